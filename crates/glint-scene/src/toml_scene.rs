@@ -1,0 +1,720 @@
+//! Glint's native scene format: TOML, documented in docs/scene-format.md.
+//!
+//! Every table is a plain struct with `deny_unknown_fields` (no serde enums, which
+//! would buffer the input and lose positions), numbers go through newtypes that
+//! reject NaN and infinity while the parser still knows where they are, and
+//! checks that need the whole table report the table's own line.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::Path;
+
+use glam::Vec3;
+use serde::de::{self, Deserializer, Visitor};
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::scene::MAX_DEPTH_LIMIT;
+use crate::shape::{polygon_non_planarity, polygon_normal};
+use crate::{
+    Attenuation, Camera, DepthCue, Light, LightKind, LoadError, Location, Material, Object,
+    Projection, RenderSettings, Scene, ShadowMode, Shape, SpecularModel,
+};
+
+/// The largest image side Glint accepts.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+pub fn load(path: &Path) -> Result<Scene, LoadError> {
+    let source = std::fs::read_to_string(path)
+        .map_err(|e| LoadError::new(path, None, format!("cannot read scene file: {e}")))?;
+    parse(&source, path)
+}
+
+/// Parses TOML scene text; `path` names the file in errors.
+pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
+    let file: FileDef = toml::from_str(source).map_err(|e| toml_error(source, path, &e))?;
+    Builder { source, path }.build(file)
+}
+
+fn toml_error(source: &str, path: &Path, e: &toml::de::Error) -> LoadError {
+    let message = e.message().trim().replace('\n', " ");
+    let Some(span) = e.span() else {
+        return LoadError::new(path, None, message);
+    };
+    let location = Location::of_offset(source, span.start);
+    // Name the key whose value was wrong: the text before '=' on that line.
+    let line_text = source.lines().nth(location.line - 1).unwrap_or("");
+    let key = line_text.split_once('=').map(|(k, _)| k.trim()).filter(|k| {
+        !k.is_empty() && !k.starts_with('[') && !message.contains(&format!("`{k}`"))
+    });
+    let message = match key {
+        Some(key) => format!("{key}: {message}"),
+        None => message,
+    };
+    LoadError::new(path, Some(location), message)
+}
+
+/// A finite number.
+#[derive(Debug, Clone, Copy)]
+struct Num(f32);
+
+/// Three finite numbers.
+#[derive(Debug, Clone, Copy)]
+struct V3(Vec3);
+
+/// A colour: three finite non-negative numbers, or one number for a grey.
+#[derive(Debug, Clone, Copy)]
+struct Rgb(Vec3);
+
+fn finite<E: de::Error>(v: f64) -> Result<f32, E> {
+    let f = v as f32;
+    if f.is_finite() {
+        Ok(f)
+    } else {
+        Err(E::custom(format!("expected a finite number, found {v}")))
+    }
+}
+
+impl<'de> Deserialize<'de> for Num {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        finite(f64::deserialize(d)?).map(Num)
+    }
+}
+
+impl<'de> Deserialize<'de> for V3 {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let [x, y, z] = <[f64; 3]>::deserialize(d)?;
+        Ok(V3(Vec3::new(finite(x)?, finite(y)?, finite(z)?)))
+    }
+}
+
+impl<'de> Deserialize<'de> for Rgb {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct RgbVisitor;
+        impl<'de> Visitor<'de> for RgbVisitor {
+            type Value = Vec3;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a colour: [r, g, b] or a single number")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Vec3, E> {
+                Ok(Vec3::splat(finite(v)?))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Vec3, E> {
+                self.visit_f64(v as f64)
+            }
+            fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
+                let mut c = [0.0f32; 3];
+                for (i, slot) in c.iter_mut().enumerate() {
+                    let v: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                    *slot = finite(v)?;
+                }
+                if seq.next_element::<de::IgnoredAny>()?.is_some() {
+                    return Err(de::Error::invalid_length(4, &self));
+                }
+                Ok(Vec3::from(c))
+            }
+        }
+        let c = d.deserialize_any(RgbVisitor)?;
+        if c.min_element() < 0.0 {
+            return Err(de::Error::custom("colour components must not be negative"));
+        }
+        Ok(Rgb(c))
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileDef {
+    image: Spanned<ImageDef>,
+    camera: Spanned<CameraDef>,
+    ambient: Option<AmbientDef>,
+    render: Option<Spanned<RenderDef>>,
+    depth_cue: Option<Spanned<DepthCueDef>>,
+    #[serde(default)]
+    light: Vec<Spanned<LightDef>>,
+    #[serde(default)]
+    material: BTreeMap<String, Spanned<MaterialDef>>,
+    #[serde(default)]
+    object: Vec<Spanned<ObjectDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ImageDef {
+    width: Spanned<i64>,
+    height: Spanned<i64>,
+    background: Option<Rgb>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraDef {
+    #[serde(rename = "type")]
+    kind: Option<Spanned<String>>,
+    eye: V3,
+    look_at: V3,
+    up: Option<V3>,
+    fov: Option<Spanned<Num>>,
+    height: Option<Spanned<Num>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AmbientDef {
+    color: Option<Rgb>,
+    intensity: Option<Spanned<Num>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RenderDef {
+    max_depth: Option<Spanned<i64>>,
+    cutoff: Option<Spanned<Num>>,
+    shadows: Option<bool>,
+    shadow_mode: Option<Spanned<String>>,
+    reflections: Option<bool>,
+    refractions: Option<bool>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DepthCueDef {
+    color: Rgb,
+    near: Num,
+    far: Num,
+    near_scale: Option<Spanned<Num>>,
+    far_scale: Spanned<Num>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightDef {
+    #[serde(rename = "type")]
+    kind: Spanned<String>,
+    position: Option<V3>,
+    direction: Option<V3>,
+    color: Option<Rgb>,
+    intensity: Option<Spanned<Num>>,
+    attenuation: Option<Spanned<String>>,
+    coefficients: Option<Spanned<V3>>,
+    enabled: Option<bool>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialDef {
+    color: Rgb,
+    ka: Option<Spanned<Num>>,
+    kd: Option<Spanned<Num>>,
+    ks: Option<Spanned<Num>>,
+    shininess: Option<Spanned<Num>>,
+    specular_color: Option<Rgb>,
+    model: Option<Spanned<String>>,
+    metallic: Option<Rgb>,
+    reflect: Option<Rgb>,
+    transmit: Option<Rgb>,
+    ior: Option<Spanned<Num>>,
+    fresnel: Option<bool>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectDef {
+    #[serde(rename = "type")]
+    kind: Spanned<String>,
+    material: Option<Spanned<String>>,
+    center: Option<V3>,
+    radius: Option<Spanned<Num>>,
+    vertices: Option<Spanned<Vec<V3>>>,
+    normals: Option<Spanned<Vec<V3>>>,
+    base: Option<V3>,
+    base_radius: Option<Spanned<Num>>,
+    apex: Option<V3>,
+    apex_radius: Option<Spanned<Num>>,
+}
+
+struct Builder<'a> {
+    source: &'a str,
+    path: &'a Path,
+}
+
+impl Builder<'_> {
+    fn error_at<T>(&self, spanned: &Spanned<T>, message: impl Into<String>) -> LoadError {
+        LoadError::new(self.path, Some(Location::of_offset(self.source, spanned.span().start)), message)
+    }
+
+    /// A number that must lie in `range`, reported at its own position.
+    fn ranged(&self, v: &Option<Spanned<Num>>, key: &str, default: f32, lo: f32, hi: f32) -> Result<f32, LoadError> {
+        match v {
+            None => Ok(default),
+            Some(s) if (lo..=hi).contains(&s.get_ref().0) => Ok(s.get_ref().0),
+            Some(s) => Err(self.error_at(s, format!("{key}: {} is outside {lo}..={hi}", s.get_ref().0))),
+        }
+    }
+
+    fn build(&self, file: FileDef) -> Result<Scene, LoadError> {
+        let (width, height, background) = self.image(&file.image)?;
+        let camera = self.camera(&file.camera)?;
+        let ambient = match &file.ambient {
+            None => Vec3::ZERO,
+            Some(a) => a.color.map_or(Vec3::ONE, |c| c.0) * self.ranged(&a.intensity, "intensity", 1.0, 0.0, f32::MAX)?,
+        };
+        let render = match &file.render {
+            None => RenderSettings::default(),
+            Some(r) => self.render(r.get_ref())?,
+        };
+        let depth_cue = file.depth_cue.as_ref().map(|d| self.depth_cue(d)).transpose()?;
+        let lights = file.light.iter().map(|l| self.light(l)).collect::<Result<_, _>>()?;
+
+        let mut materials = vec![Material::default()];
+        let mut names = BTreeMap::new();
+        for (name, def) in &file.material {
+            names.insert(name.as_str(), materials.len());
+            materials.push(self.material(name, def.get_ref())?);
+        }
+        let objects = file
+            .object
+            .iter()
+            .map(|o| self.object(o, &names))
+            .collect::<Result<_, _>>()?;
+
+        Ok(Scene { width, height, background, camera, ambient, lights, materials, objects, depth_cue, render, warnings: Vec::new() })
+    }
+
+    fn image(&self, image: &Spanned<ImageDef>) -> Result<(u32, u32, Vec3), LoadError> {
+        let def = image.get_ref();
+        let side = |v: &Spanned<i64>, key: &str| {
+            u32::try_from(*v.get_ref())
+                .ok()
+                .filter(|s| (1..=MAX_IMAGE_SIDE).contains(s))
+                .ok_or_else(|| self.error_at(v, format!("{key}: {} is outside 1..={MAX_IMAGE_SIDE}", v.get_ref())))
+        };
+        Ok((side(&def.width, "width")?, side(&def.height, "height")?, def.background.map_or(Vec3::ZERO, |c| c.0)))
+    }
+
+    fn camera(&self, camera: &Spanned<CameraDef>) -> Result<Camera, LoadError> {
+        let def = camera.get_ref();
+        let kind = def.kind.as_ref().map_or("perspective", |k| k.get_ref().as_str());
+        let projection = match kind {
+            "perspective" => {
+                if let Some(h) = &def.height {
+                    return Err(self.error_at(h, "height: only an orthographic camera has a view-plane height"));
+                }
+                let fov = def.fov.as_ref().ok_or_else(|| self.error_at(camera, "camera: missing field `fov`"))?;
+                let fov_y_degrees = fov.get_ref().0;
+                if !(fov_y_degrees > 0.0 && fov_y_degrees < 180.0) {
+                    return Err(self.error_at(fov, format!("fov: {fov_y_degrees} is not between 0 and 180 degrees")));
+                }
+                Projection::Perspective { fov_y_degrees }
+            }
+            "orthographic" => {
+                if let Some(f) = &def.fov {
+                    return Err(self.error_at(f, "fov: an orthographic camera has a view-plane `height`, not a field of view"));
+                }
+                let h = def.height.as_ref().ok_or_else(|| self.error_at(camera, "camera: missing field `height`"))?;
+                if h.get_ref().0 <= 0.0 {
+                    return Err(self.error_at(h, "height: must be positive"));
+                }
+                Projection::Orthographic { height: h.get_ref().0 }
+            }
+            other => {
+                let k = def.kind.as_ref().expect("a non-default kind was written");
+                return Err(self.error_at(k, format!("type: unknown camera type `{other}`, expected `perspective` or `orthographic`")));
+            }
+        };
+        let camera_value = Camera { eye: def.eye.0, look_at: def.look_at.0, up: def.up.map_or(Vec3::Y, |u| u.0), projection };
+        if camera_value.basis().is_none() {
+            return Err(self.error_at(camera, "camera: `up` is parallel to the view direction (or eye equals look_at)"));
+        }
+        Ok(camera_value)
+    }
+
+    fn render(&self, def: &RenderDef) -> Result<RenderSettings, LoadError> {
+        let d = RenderSettings::default();
+        let max_depth = match &def.max_depth {
+            None => d.max_depth,
+            Some(v) => u32::try_from(*v.get_ref())
+                .ok()
+                .filter(|m| (1..=MAX_DEPTH_LIMIT).contains(m))
+                .ok_or_else(|| self.error_at(v, format!("max_depth: {} is outside 1..={MAX_DEPTH_LIMIT}", v.get_ref())))?,
+        };
+        let shadow_mode = match def.shadow_mode.as_ref() {
+            None => d.shadow_mode,
+            Some(m) => match m.get_ref().as_str() {
+                "opaque" => ShadowMode::Opaque,
+                "tinted" => ShadowMode::Tinted,
+                other => return Err(self.error_at(m, format!("shadow_mode: unknown mode `{other}`, expected `opaque` or `tinted`"))),
+            },
+        };
+        Ok(RenderSettings {
+            max_depth,
+            cutoff: self.ranged(&def.cutoff, "cutoff", d.cutoff, 0.0, 1.0)?,
+            shadows: def.shadows.unwrap_or(d.shadows),
+            shadow_mode,
+            reflections: def.reflections.unwrap_or(d.reflections),
+            refractions: def.refractions.unwrap_or(d.refractions),
+        })
+    }
+
+    fn depth_cue(&self, cue: &Spanned<DepthCueDef>) -> Result<DepthCue, LoadError> {
+        let def = cue.get_ref();
+        if def.far.0 <= def.near.0 {
+            return Err(self.error_at(cue, "depth_cue: `far` must be greater than `near`"));
+        }
+        Ok(DepthCue {
+            color: def.color.0,
+            near: def.near.0,
+            far: def.far.0,
+            near_scale: self.ranged(&def.near_scale, "near_scale", 1.0, 0.0, 1.0)?,
+            far_scale: self.ranged(&Some(def.far_scale.clone()), "far_scale", 0.0, 0.0, 1.0)?,
+        })
+    }
+
+    fn light(&self, light: &Spanned<LightDef>) -> Result<Light, LoadError> {
+        let def = light.get_ref();
+        let kind = match def.kind.get_ref().as_str() {
+            "point" => {
+                if def.direction.is_some() {
+                    return Err(self.error_at(light, "light: a point light has a `position`, not a `direction`"));
+                }
+                let p = def.position.ok_or_else(|| self.error_at(light, "light: missing field `position`"))?;
+                LightKind::Point { position: p.0 }
+            }
+            "directional" => {
+                if def.position.is_some() {
+                    return Err(self.error_at(light, "light: a directional light has a `direction`, not a `position`"));
+                }
+                let d = def.direction.ok_or_else(|| self.error_at(light, "light: missing field `direction`"))?;
+                if d.0.length() == 0.0 {
+                    return Err(self.error_at(light, "direction: must not be zero"));
+                }
+                LightKind::Directional { direction: d.0.normalize() }
+            }
+            other => return Err(self.error_at(&def.kind, format!("type: unknown light type `{other}`, expected `point` or `directional`"))),
+        };
+        let attenuation = match def.attenuation.as_ref().map(|a| a.get_ref().as_str()) {
+            None | Some("none") => Attenuation::None,
+            Some("inverse_square") => Attenuation::InverseSquare,
+            Some("polynomial") => {
+                let c = def.coefficients.as_ref().ok_or_else(|| {
+                    self.error_at(light, "light: polynomial attenuation needs `coefficients = [c1, c2, c3]`")
+                })?;
+                let v = c.get_ref().0;
+                if v.min_element() < 0.0 || v.max_element() <= 0.0 {
+                    return Err(self.error_at(c, "coefficients: must be non-negative and not all zero"));
+                }
+                Attenuation::Polynomial { c1: v.x, c2: v.y, c3: v.z }
+            }
+            Some(other) => {
+                let a = def.attenuation.as_ref().expect("matched Some");
+                return Err(self.error_at(a, format!("attenuation: unknown form `{other}`, expected `none`, `inverse_square` or `polynomial`")));
+            }
+        };
+        if let (Some(c), Attenuation::None | Attenuation::InverseSquare) = (&def.coefficients, attenuation) {
+            return Err(self.error_at(c, "coefficients: only polynomial attenuation takes coefficients"));
+        }
+        Ok(Light {
+            kind,
+            color: def.color.map_or(Vec3::ONE, |c| c.0),
+            intensity: self.ranged(&def.intensity, "intensity", 1.0, 0.0, f32::MAX)?,
+            attenuation,
+            enabled: def.enabled.unwrap_or(true),
+        })
+    }
+
+    fn material(&self, name: &str, def: &MaterialDef) -> Result<Material, LoadError> {
+        let d = Material::default();
+        let specular_model = match def.model.as_ref() {
+            None => d.specular_model,
+            Some(m) => match m.get_ref().as_str() {
+                "phong" => SpecularModel::Phong,
+                "blinn" => SpecularModel::BlinnPhong,
+                other => return Err(self.error_at(m, format!("model: unknown specular model `{other}`, expected `phong` or `blinn`"))),
+            },
+        };
+        Ok(Material {
+            name: name.to_string(),
+            ambient: self.ranged(&def.ka, "ka", d.ambient, 0.0, f32::MAX)?,
+            diffuse: self.ranged(&def.kd, "kd", d.diffuse, 0.0, f32::MAX)?,
+            specular: self.ranged(&def.ks, "ks", d.specular, 0.0, f32::MAX)?,
+            shininess: self.ranged(&def.shininess, "shininess", d.shininess, 0.0, 1e6)?,
+            color: def.color.0,
+            specular_color: def.specular_color.map(|c| c.0),
+            specular_model,
+            metallic_f0: def.metallic.map(|c| c.0),
+            reflect: def.reflect.map_or(Vec3::ZERO, |c| c.0),
+            transmit: def.transmit.map_or(Vec3::ZERO, |c| c.0),
+            ior: self.ranged(&def.ior, "ior", 1.0, 0.01, 100.0)?,
+            fresnel: def.fresnel.unwrap_or(false),
+        })
+    }
+
+    fn object(&self, object: &Spanned<ObjectDef>, materials: &BTreeMap<&str, usize>) -> Result<Object, LoadError> {
+        let def = object.get_ref();
+        let material = match &def.material {
+            None => 0,
+            Some(m) => *materials
+                .get(m.get_ref().as_str())
+                .ok_or_else(|| self.error_at(m, format!("material: no material named `{}`", m.get_ref())))?,
+        };
+        let kind = def.kind.get_ref().as_str();
+        let allowed: &[&str] = match kind {
+            "sphere" => &["center", "radius"],
+            "triangle" => &["vertices", "normals"],
+            "polygon" => &["vertices"],
+            "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
+            other => {
+                return Err(self.error_at(
+                    &def.kind,
+                    format!("type: unknown object type `{other}`, expected sphere, triangle, polygon, cone or cylinder"),
+                ));
+            }
+        };
+        let present = [
+            ("center", def.center.is_some()),
+            ("radius", def.radius.is_some()),
+            ("vertices", def.vertices.is_some()),
+            ("normals", def.normals.is_some()),
+            ("base", def.base.is_some()),
+            ("base_radius", def.base_radius.is_some()),
+            ("apex", def.apex.is_some()),
+            ("apex_radius", def.apex_radius.is_some()),
+        ];
+        if let Some((key, _)) = present.iter().find(|(k, p)| *p && !allowed.contains(k)) {
+            return Err(self.error_at(object, format!("object: `{key}` does not apply to a {kind}")));
+        }
+        let missing = |key: &str| self.error_at(object, format!("object: a {kind} needs `{key}`"));
+        let positive = |v: &Option<Spanned<Num>>, key: &str| -> Result<f32, LoadError> {
+            let s = v.as_ref().ok_or_else(|| missing(key))?;
+            if s.get_ref().0 > 0.0 {
+                Ok(s.get_ref().0)
+            } else {
+                Err(self.error_at(s, format!("{key}: must be positive, found {}", s.get_ref().0)))
+            }
+        };
+        let shape = match kind {
+            "sphere" => Shape::Sphere { center: def.center.ok_or_else(|| missing("center"))?.0, radius: positive(&def.radius, "radius")? },
+            "triangle" | "polygon" => {
+                let vs = def.vertices.as_ref().ok_or_else(|| missing("vertices"))?;
+                let vertices: Vec<Vec3> = vs.get_ref().iter().map(|v| v.0).collect();
+                let expected = if kind == "triangle" { vertices.len() == 3 } else { vertices.len() >= 3 };
+                if !expected {
+                    let need = if kind == "triangle" { "exactly 3" } else { "at least 3" };
+                    return Err(self.error_at(vs, format!("vertices: a {kind} needs {need} vertices, found {}", vertices.len())));
+                }
+                let normal = polygon_normal(&vertices)
+                    .ok_or_else(|| self.error_at(vs, format!("vertices: the {kind} has no area (its vertices are collinear)")))?;
+                if kind == "polygon" {
+                    if polygon_non_planarity(&vertices, normal) > 1e-4 {
+                        return Err(self.error_at(vs, "vertices: the polygon's vertices are not coplanar"));
+                    }
+                    Shape::Polygon { vertices }
+                } else {
+                    let normals = match &def.normals {
+                        None => None,
+                        Some(ns) if ns.get_ref().len() == 3 && ns.get_ref().iter().all(|n| n.0.length() > 0.0) => {
+                            let n = ns.get_ref();
+                            Some([n[0].0.normalize(), n[1].0.normalize(), n[2].0.normalize()])
+                        }
+                        Some(ns) => return Err(self.error_at(ns, "normals: a triangle needs 3 non-zero normals")),
+                    };
+                    Shape::Triangle { vertices: [vertices[0], vertices[1], vertices[2]], normals }
+                }
+            }
+            _ => {
+                let base = def.base.ok_or_else(|| missing("base"))?.0;
+                let apex = def.apex.ok_or_else(|| missing("apex"))?.0;
+                if (apex - base).length() == 0.0 {
+                    return Err(self.error_at(object, "object: `base` and `apex` must differ"));
+                }
+                let base_radius = positive(&def.base_radius, "base_radius")?;
+                let apex_radius = if kind == "cylinder" && def.apex_radius.is_none() {
+                    base_radius
+                } else {
+                    let r = def.apex_radius.as_ref().ok_or_else(|| missing("apex_radius"))?;
+                    if r.get_ref().0 < 0.0 {
+                        return Err(self.error_at(r, "apex_radius: must not be negative"));
+                    }
+                    r.get_ref().0
+                };
+                Shape::Cone { base, base_radius, apex, apex_radius }
+            }
+        };
+        Ok(Object { material, shapes: vec![shape] })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = r#"
+[image]
+width = 32
+height = 24
+
+[camera]
+eye = [0, 0, 5]
+look_at = [0, 0, 0]
+fov = 40
+"#;
+
+    fn parse_str(extra: &str) -> Result<Scene, LoadError> {
+        parse(&format!("{MINIMAL}{extra}"), Path::new("test.toml"))
+    }
+
+    fn error(extra: &str) -> String {
+        parse_str(extra).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn minimal_scene_has_defaults() {
+        let s = parse_str("").unwrap();
+        assert_eq!((s.width, s.height), (32, 24));
+        assert_eq!(s.camera.projection, Projection::Perspective { fov_y_degrees: 40.0 });
+        assert_eq!(s.camera.up, Vec3::Y);
+        assert_eq!(s.materials.len(), 1);
+        assert_eq!(s.render, RenderSettings::default());
+    }
+
+    #[test]
+    fn every_section_parses() {
+        let s = parse_str(
+            r#"
+[ambient]
+color = [1, 0.5, 0.25]
+intensity = 0.2
+
+[render]
+max_depth = 3
+cutoff = 0.01
+shadow_mode = "tinted"
+
+[depth_cue]
+color = [0.5, 0.5, 0.5]
+near = 1
+far = 11
+far_scale = 0.25
+
+[[light]]
+type = "point"
+position = [1, 2, 3]
+color = [1, 1, 0]
+intensity = 2
+attenuation = "polynomial"
+coefficients = [1, 0.1, 0.01]
+
+[[light]]
+type = "directional"
+direction = [0, -2, 0]
+
+[material.glass]
+color = 1
+ks = 0.5
+model = "phong"
+transmit = [0.9, 0.9, 0.9]
+ior = 1.5
+fresnel = true
+
+[[object]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+material = "glass"
+
+[[object]]
+type = "polygon"
+vertices = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]
+
+[[object]]
+type = "cylinder"
+base = [0, 0, 0]
+apex = [0, 1, 0]
+base_radius = 0.5
+"#,
+        )
+        .unwrap();
+        assert_eq!(s.ambient, Vec3::new(0.2, 0.1, 0.05));
+        assert_eq!(s.render.max_depth, 3);
+        assert_eq!(s.render.shadow_mode, ShadowMode::Tinted);
+        assert_eq!(s.depth_cue.unwrap().near_scale, 1.0);
+        assert_eq!(s.lights[0].attenuation, Attenuation::Polynomial { c1: 1.0, c2: 0.1, c3: 0.01 });
+        assert_eq!(s.lights[1].kind, LightKind::Directional { direction: Vec3::NEG_Y });
+        assert_eq!(s.materials[1].specular_model, SpecularModel::Phong);
+        assert_eq!(s.objects[0].material, 1);
+        assert!(matches!(s.objects[2].shapes[0], Shape::Cone { apex_radius: 0.5, .. }));
+    }
+
+    #[test]
+    fn orthographic_camera() {
+        let s = parse(
+            "[image]\nwidth = 4\nheight = 4\n[camera]\ntype = \"orthographic\"\neye = [0,0,5]\nlook_at = [0,0,0]\nheight = 3\n",
+            Path::new("o.toml"),
+        )
+        .unwrap();
+        assert_eq!(s.camera.projection, Projection::Orthographic { height: 3.0 });
+    }
+
+    #[test]
+    fn unknown_key_names_file_line_and_key() {
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradus = 1\n");
+        assert!(e.starts_with("test.toml:13:"), "{e}");
+        assert!(e.contains("radus"), "{e}");
+    }
+
+    #[test]
+    fn wrong_type_names_line_and_key() {
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = \"big\"\n");
+        assert!(e.starts_with("test.toml:13:"), "{e}");
+        assert!(e.contains("radius"), "{e}");
+    }
+
+    #[test]
+    fn nan_is_rejected_where_it_stands() {
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, nan, 0]\nradius = 1\n");
+        assert!(e.starts_with("test.toml:12:"), "{e}");
+        assert!(e.contains("finite"), "{e}");
+    }
+
+    #[test]
+    fn missing_field_names_the_table_and_field() {
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\n");
+        assert!(e.starts_with("test.toml:1"), "{e}");
+        assert!(e.contains("`radius`"), "{e}");
+        let e = parse("[image]\nwidth = 3\nheight = 3\n", Path::new("t.toml")).unwrap_err().to_string();
+        assert!(e.contains("camera"), "{e}");
+    }
+
+    #[test]
+    fn semantic_errors_point_at_the_value() {
+        for (extra, line, needle) in [
+            ("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\n", 13, "positive"),
+            ("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"nope\"\n", 14, "nope"),
+            ("[[object]]\ntype = \"polygon\"\nvertices = [[0,0,0],[1,0,0]]\n", 12, "at least 3"),
+            ("[[object]]\ntype = \"triangle\"\nvertices = [[0,0,0],[1,0,0],[2,0,0]]\n", 12, "no area"),
+            ("[[object]]\ntype = \"polygon\"\nvertices = [[0,0,0],[1,0,0],[1,1,0],[0,1,1]]\n", 12, "coplanar"),
+            ("[render]\nmax_depth = 1000\n", 11, "max_depth"),
+            ("[[light]]\ntype = \"spotlight\"\nposition = [0,0,0]\n", 11, "spotlight"),
+        ] {
+            let e = error(extra);
+            assert!(e.starts_with(&format!("test.toml:{line}:")), "{e}");
+            assert!(e.contains(needle), "{e}");
+        }
+    }
+
+    #[test]
+    fn up_parallel_to_view_is_an_error() {
+        let src = MINIMAL.replace("fov = 40", "fov = 40\nup = [0, 0, 1]");
+        let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
+        assert!(e.contains("parallel"), "{e}");
+    }
+
+    #[test]
+    fn absurd_image_size_is_an_error() {
+        let src = MINIMAL.replace("width = 32", "width = 100000");
+        let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
+        assert!(e.starts_with("p.toml:3:"), "{e}");
+        let src = MINIMAL.replace("width = 32", "width = 0");
+        assert!(parse(&src, Path::new("p.toml")).is_err());
+    }
+}
