@@ -1,1 +1,29 @@
+//! Glint's GPU host: picks a device, composes and validates the WGSL kernels,
+//! uploads a packed scene, dispatches the trace kernel in tiles, resolves the
+//! accumulated samples and reads the image back.
 
+pub mod device;
+pub mod output;
+pub mod renderer;
+pub mod shaders;
+
+pub use device::{Gpu, ADAPTER_ENV};
+pub use output::{write_image, Image};
+pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
+
+/// Everything that can go wrong on the GPU side, one line each.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error("{0}")]
+    NoAdapter(String),
+    #[error("cannot open the GPU device: {0}")]
+    Device(String),
+    #[error("shader error: {0}")]
+    Shader(String),
+    #[error("the scene needs {need} bytes for {what}, but the device's {limit} is {have}")]
+    Limit { what: String, limit: &'static str, need: u64, have: u64 },
+    #[error("GPU error: {0}")]
+    Runtime(String),
+    #[error("{0}")]
+    Output(String),
+}

@@ -107,7 +107,9 @@ pub struct GpuMaterial {
     pub f0: [f32; 3],
     pub ior: f32,
     pub flags: u32,
-    pub _pad: [u32; 3],
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
 
 /// One primitive, 64 bytes; what `a`, `b`, `c` hold depends on the kind:
@@ -243,7 +245,9 @@ fn pack_material(m: &crate::Material) -> GpuMaterial {
         f0: m.metallic_f0.unwrap_or(Vec3::ZERO).into(),
         ior: m.ior,
         flags,
-        _pad: [0; 3],
+        _pad0: 0,
+        _pad1: 0,
+        _pad2: 0,
     }
 }
 

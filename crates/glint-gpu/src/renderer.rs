@@ -1,0 +1,343 @@
+//! The render pipeline on the device: upload → dispatch tiles → resolve → read back.
+
+use bytemuck::{Pod, Zeroable};
+use glint_scene::gpu_types::{Globals, GpuScene};
+use wgpu::util::DeviceExt;
+
+use crate::shaders::{ShaderSource, RESOLVE_FILES, TRACE_FILES};
+use crate::{GpuError, Image};
+
+/// Side of the square tile one dispatch covers, in pixels; bounds the work per
+/// dispatch so no single submission runs long enough to trip a GPU watchdog.
+pub const TILE: u32 = 128;
+
+/// How linear radiance becomes a display value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ToneMap {
+    #[default]
+    Clamp = 0,
+    Reinhard = 1,
+    Aces = 2,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    pub width: u32,
+    pub height: u32,
+    pub exposure: f32,
+    pub tone_map: ToneMap,
+}
+
+/// Rays traced, by kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RayStats {
+    pub eye_hit: u64,
+    pub eye_miss: u64,
+    pub shadow: u64,
+    pub reflect: u64,
+    pub refract: u64,
+}
+
+impl RayStats {
+    pub fn total(&self) -> u64 {
+        self.eye_hit + self.eye_miss + self.shadow + self.reflect + self.refract
+    }
+
+    fn add(&mut self, counts: &[u32]) {
+        self.eye_hit += u64::from(counts[0]);
+        self.eye_miss += u64::from(counts[1]);
+        self.shadow += u64::from(counts[2]);
+        self.reflect += u64::from(counts[3]);
+        self.refract += u64::from(counts[4]);
+    }
+}
+
+const STAT_COUNT: u64 = 5;
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct ResolveParams {
+    pixel_count: u32,
+    tone_map: u32,
+    exposure: f32,
+    _pad: u32,
+}
+
+/// The compiled kernels on one device. Cheap to clone the device and queue
+/// handles into it, so the viewer can share eframe's device.
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    trace: wgpu::ComputePipeline,
+    resolve: wgpu::ComputePipeline,
+}
+
+/// A scene uploaded for one image size.
+pub struct SceneBuffers {
+    width: u32,
+    height: u32,
+    globals: Globals,
+    globals_buffer: wgpu::Buffer,
+    accum: wgpu::Buffer,
+    stats: wgpu::Buffer,
+    trace_bind: wgpu::BindGroup,
+    /// Bytes of geometry, BVH, materials and lights on the device.
+    pub scene_bytes: u64,
+}
+
+impl Renderer {
+    pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
+        let trace = create_pipeline(&device, source, TRACE_FILES, "trace_main")?;
+        let resolve = create_pipeline(&device, source, RESOLVE_FILES, "resolve_main")?;
+        Ok(Self { device, queue, trace, resolve })
+    }
+
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    /// Uploads `scene` for rendering at `width` × `height`, checking the device's
+    /// buffer limits first.
+    pub fn upload(&self, scene: &GpuScene, globals: Globals) -> Result<SceneBuffers, GpuError> {
+        let (width, height) = (globals.width, globals.height);
+        let limits = self.device.limits();
+        let accum_bytes = u64::from(width) * u64::from(height) * 16;
+        let arrays: [(&str, &[u8]); 6] = [
+            ("primitives", bytemuck::cast_slice(&scene.prims)),
+            ("BVH nodes", bytemuck::cast_slice(&scene.nodes)),
+            ("materials", bytemuck::cast_slice(&scene.materials)),
+            ("lights", bytemuck::cast_slice(&scene.lights)),
+            ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
+            ("the accumulation image", &[]),
+        ];
+        for (what, bytes) in arrays {
+            let need = if bytes.is_empty() { accum_bytes } else { bytes.len() as u64 };
+            for (limit, have) in [
+                ("max_storage_buffer_binding_size", u64::from(limits.max_storage_buffer_binding_size)),
+                ("max_buffer_size", limits.max_buffer_size),
+            ] {
+                if need > have {
+                    return Err(GpuError::Limit { what: what.into(), limit, need, have });
+                }
+            }
+        }
+
+        let storage = |label: &str, contents: &[u8]| {
+            self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let prims = storage("prims", arrays[0].1);
+        let nodes = storage("nodes", arrays[1].1);
+        let materials = storage("materials", arrays[2].1);
+        let lights = storage("lights", arrays[3].1);
+        let points = storage("points", arrays[4].1);
+        let globals_buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("globals"),
+            contents: bytemuck::bytes_of(&globals),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let accum = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("accum"),
+            size: accum_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let stats = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("stats"),
+            size: STAT_COUNT * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let buffers = [&globals_buffer, &prims, &nodes, &materials, &lights, &points, &accum, &stats];
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+            .collect();
+        let trace_bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("trace"),
+            layout: &self.trace.get_bind_group_layout(0),
+            entries: &entries,
+        });
+        let scene_bytes = arrays[..5].iter().map(|(_, b)| b.len() as u64).sum();
+        Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, trace_bind, scene_bytes })
+    }
+
+    /// Renders one sample per pixel, tile by tile, calling `progress(done, total)`
+    /// after each tile, then resolves and reads the image back.
+    pub fn render(
+        &self,
+        scene: &SceneBuffers,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u32, u32),
+    ) -> Result<(Image, RayStats), GpuError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let result = self.render_unscoped(scene, options, progress);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Runtime(e.to_string()));
+        }
+        result
+    }
+
+    fn render_unscoped(
+        &self,
+        scene: &SceneBuffers,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u32, u32),
+    ) -> Result<(Image, RayStats), GpuError> {
+        let (width, height) = (scene.width, scene.height);
+        let stats_readback = self.readback_buffer(STAT_COUNT * 4);
+        let mut stats = RayStats::default();
+
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.clear_buffer(&scene.accum, 0, None);
+        self.queue.submit([encoder.finish()]);
+
+        let tiles_x = width.div_ceil(TILE);
+        let tiles_y = height.div_ceil(TILE);
+        let total = tiles_x * tiles_y;
+        for tile in 0..total {
+            let origin = [(tile % tiles_x) * TILE, (tile / tiles_x) * TILE];
+            let globals = Globals { tile_origin: origin, ..scene.globals };
+            self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            encoder.clear_buffer(&scene.stats, 0, None);
+            {
+                let mut pass = encoder.begin_compute_pass(&Default::default());
+                pass.set_pipeline(&self.trace);
+                pass.set_bind_group(0, &scene.trace_bind, &[]);
+                let w = TILE.min(width - origin[0]);
+                let h = TILE.min(height - origin[1]);
+                pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+            }
+            encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_COUNT * 4);
+            self.queue.submit([encoder.finish()]);
+            let counts: Vec<u32> = bytemuck::cast_slice(&self.read(&stats_readback)?).to_vec();
+            stats.add(&counts);
+            progress(tile + 1, total);
+        }
+
+        let image = self.resolve(scene, options)?;
+        Ok((image, stats))
+    }
+
+    /// Turns the accumulated samples into display values (tone mapped, sRGB) and
+    /// reads both back.
+    fn resolve(&self, scene: &SceneBuffers, options: &RenderOptions) -> Result<Image, GpuError> {
+        let pixels = scene.width * scene.height;
+        let bytes = u64::from(pixels) * 16;
+        let params = ResolveParams {
+            pixel_count: pixels,
+            tone_map: options.tone_map as u32,
+            exposure: options.exposure,
+            _pad: 0,
+        };
+        let params_buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("resolve params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let display = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("display"),
+            size: bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("resolve"),
+            layout: &self.resolve.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: scene.accum.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: display.as_entire_binding() },
+            ],
+        });
+        let display_readback = self.readback_buffer(bytes);
+        let accum_readback = self.readback_buffer(bytes);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&self.resolve);
+            pass.set_bind_group(0, &bind, &[]);
+            dispatch_linear(&mut pass, pixels.div_ceil(64), self.device.limits().max_compute_workgroups_per_dimension);
+        }
+        encoder.copy_buffer_to_buffer(&display, 0, &display_readback, 0, bytes);
+        encoder.copy_buffer_to_buffer(&scene.accum, 0, &accum_readback, 0, bytes);
+        self.queue.submit([encoder.finish()]);
+        let display: Vec<[f32; 4]> = bytemuck::cast_slice(&self.read(&display_readback)?).to_vec();
+        let accum: Vec<[f32; 4]> = bytemuck::cast_slice(&self.read(&accum_readback)?).to_vec();
+        let linear = accum
+            .iter()
+            .map(|s| {
+                let n = s[3].max(1.0);
+                [s[0] / n * options.exposure, s[1] / n * options.exposure, s[2] / n * options.exposure, 1.0]
+            })
+            .collect();
+        Ok(Image { width: scene.width, height: scene.height, display, linear })
+    }
+
+    fn readback_buffer(&self, size: u64) -> wgpu::Buffer {
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Waits for the queue and copies a mappable buffer's bytes out.
+    fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+        let (tx, rx) = std::sync::mpsc::channel();
+        buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Runtime(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Runtime(e.to_string()))?
+            .map_err(|e| GpuError::Runtime(e.to_string()))?;
+        let bytes = buffer.get_mapped_range(..).map_err(|e| GpuError::Runtime(e.to_string()))?.to_vec();
+        buffer.unmap();
+        Ok(bytes)
+    }
+}
+
+/// A 1D dispatch of `groups` workgroups, folded into rows when it exceeds the
+/// per-dimension limit; the kernel rebuilds the linear index from both.
+fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) {
+    let x = groups.clamp(1, max_per_dim);
+    pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
+}
+
+/// Creates a compute pipeline inside an error scope, so a shader that the driver
+/// rejects fails here, loudly, instead of later reading back zeros.
+fn create_pipeline(
+    device: &wgpu::Device,
+    source: &ShaderSource,
+    files: &[&'static str],
+    entry: &str,
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let composed = source.compose(files)?;
+    composed.validate()?;
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(entry),
+        source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: None,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        return Err(GpuError::Shader(format!("{entry}: {e}")));
+    }
+    Ok(pipeline)
+}

@@ -1,0 +1,132 @@
+//! WGSL composition. Each kernel is an ordered concatenation of the one-concept
+//! files in `shaders/`; WGSL allows module-scope declarations in any order, so
+//! the order only makes errors easier to read. Errors are mapped back to the
+//! file and line they came from.
+//!
+//! The files are embedded at build time; `ShaderSource::from_dir` reads them from
+//! disk instead (the viewer's hot reload).
+
+use std::path::{Path, PathBuf};
+
+use crate::GpuError;
+
+/// The files of the trace kernel, in order.
+pub const TRACE_FILES: &[&str] = &[
+    "types.wgsl",
+    "bindings.wgsl",
+    "camera.wgsl",
+    "sphere.wgsl",
+    "triangle.wgsl",
+    "polygon.wgsl",
+    "cone.wgsl",
+    "primitive.wgsl",
+    "bvh.wgsl",
+    "reflect.wgsl",
+    "refract.wgsl",
+    "shadow.wgsl",
+    "shade.wgsl",
+    "trace.wgsl",
+];
+
+/// The files of the resolve kernel (accumulated samples → display values).
+pub const RESOLVE_FILES: &[&str] = &["resolve.wgsl"];
+
+macro_rules! embed {
+    ($($name:literal),* $(,)?) => {
+        &[$(($name, include_str!(concat!("../../../shaders/", $name)))),*]
+    };
+}
+
+const EMBEDDED: &[(&str, &str)] = embed!(
+    "types.wgsl",
+    "bindings.wgsl",
+    "camera.wgsl",
+    "sphere.wgsl",
+    "triangle.wgsl",
+    "polygon.wgsl",
+    "cone.wgsl",
+    "primitive.wgsl",
+    "bvh.wgsl",
+    "reflect.wgsl",
+    "refract.wgsl",
+    "shadow.wgsl",
+    "shade.wgsl",
+    "trace.wgsl",
+    "resolve.wgsl",
+);
+
+/// Where the WGSL files come from.
+#[derive(Debug, Clone)]
+pub enum ShaderSource {
+    Embedded,
+    Dir(PathBuf),
+}
+
+/// A composed kernel: its source and where each file starts in it.
+#[derive(Debug, Clone)]
+pub struct Composed {
+    pub source: String,
+    /// (file name, first line in `source`, 1-based)
+    pub files: Vec<(&'static str, usize)>,
+}
+
+impl Composed {
+    /// Turns a line of the composed source into "file:line".
+    pub fn locate(&self, line: usize) -> String {
+        match self.files.iter().rev().find(|(_, start)| *start <= line) {
+            Some((name, start)) => format!("shaders/{name}:{}", line - start + 1),
+            None => format!("line {line}"),
+        }
+    }
+
+    /// Parses and validates with naga, naming the file and line of any error.
+    pub fn validate(&self) -> Result<naga::Module, GpuError> {
+        let module = naga::front::wgsl::parse_str(&self.source).map_err(|e| {
+            let place = e.location(&self.source).map_or(String::new(), |l| self.locate(l.line_number as usize));
+            GpuError::Shader(format!("{place}: {}", e.message()))
+        })?;
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+            .validate(&module)
+            .map_err(|e| {
+                let place = e
+                    .spans()
+                    .next()
+                    .map(|(span, _)| self.locate(span.location(&self.source).line_number as usize))
+                    .unwrap_or_default();
+                GpuError::Shader(format!("{place}: {}", e.as_inner()))
+            })?;
+        Ok(module)
+    }
+}
+
+impl ShaderSource {
+    /// The `shaders/` folder of this source tree, for hot reload.
+    pub fn source_dir() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders")
+    }
+
+    fn read(&self, name: &'static str) -> Result<String, GpuError> {
+        match self {
+            ShaderSource::Embedded => Ok(EMBEDDED
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, s)| s.to_string())
+                .expect("every kernel file is embedded")),
+            ShaderSource::Dir(dir) => std::fs::read_to_string(dir.join(name))
+                .map_err(|e| GpuError::Shader(format!("{}: {e}", dir.join(name).display()))),
+        }
+    }
+
+    pub fn compose(&self, files: &[&'static str]) -> Result<Composed, GpuError> {
+        let mut source = String::new();
+        let mut starts = Vec::new();
+        for name in files {
+            starts.push((*name, source.lines().count() + 1));
+            source.push_str(&self.read(name)?);
+            if !source.ends_with('\n') {
+                source.push('\n');
+            }
+        }
+        Ok(Composed { source, files: starts })
+    }
+}

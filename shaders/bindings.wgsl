@@ -1,0 +1,12 @@
+// Resources of the trace kernel, in bind group 0.
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+@group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
+@group(0) @binding(2) var<storage, read> nodes: array<Node>;
+@group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
+@group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
+// Polygon vertices and triangle vertex normals (xyz).
+@group(0) @binding(5) var<storage, read> points: array<vec4<f32>>;
+// Running sum of samples per pixel: rgb and the sample count in w.
+@group(0) @binding(6) var<storage, read_write> accum: array<vec4<f32>>;
+@group(0) @binding(7) var<storage, read_write> stats: array<atomic<u32>, STAT_COUNT>;

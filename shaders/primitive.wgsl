@@ -1,0 +1,59 @@
+// Dispatch on primitive kind: intersection and surface normals.
+
+fn intersect_prim(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
+    switch prim_kind(p) {
+        case PRIM_SPHERE: { return sphere_intersect(p, ray, t_min, t_max); }
+        case PRIM_TRIANGLE: { return triangle_intersect(p, ray, t_min, t_max); }
+        case PRIM_POLYGON: { return polygon_intersect(p, ray, t_min, t_max); }
+        default: { return cone_intersect(p, ray, t_min, t_max); }
+    }
+}
+
+struct Surface {
+    point: vec3<f32>,
+    // Unit normals, both turned towards the incoming ray: surfaces are two-sided.
+    geometric: vec3<f32>,
+    shading: vec3<f32>,
+    // The ray arrived from the back of the surface (from inside a closed object).
+    backface: bool,
+}
+
+fn surface_at(p: GpuPrim, ray: Ray, t: f32) -> Surface {
+    let point = ray.origin + t * ray.dir;
+    var geometric: vec3<f32>;
+    var shading: vec3<f32>;
+    switch prim_kind(p) {
+        case PRIM_SPHERE: {
+            geometric = sphere_normal(p, point);
+            shading = geometric;
+        }
+        case PRIM_TRIANGLE: {
+            geometric = triangle_geometric_normal(p);
+            shading = triangle_shading_normal(p, point);
+        }
+        case PRIM_POLYGON: {
+            geometric = polygon_normal(p);
+            shading = geometric;
+        }
+        default: {
+            geometric = cone_normal(p, point);
+            shading = geometric;
+        }
+    }
+    let backface = dot(geometric, ray.dir) > 0.0;
+    let sign = select(1.0, -1.0, backface);
+    geometric *= sign;
+    shading *= sign;
+    // Interpolated normals can still face away; keep them on the viewer's side.
+    if dot(shading, ray.dir) > 0.0 {
+        shading = geometric;
+    }
+    return Surface(point, geometric, shading, backface);
+}
+
+// Offset for rays leaving a surface, relative to the magnitude of the
+// coordinates so large scenes do not self-intersect.
+fn ray_epsilon(point: vec3<f32>) -> f32 {
+    let m = max(max(abs(point.x), abs(point.y)), abs(point.z));
+    return 1e-4 * max(1.0, m);
+}

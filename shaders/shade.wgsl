@@ -1,0 +1,70 @@
+// The local illumination model, per colour channel:
+//   I = k_a·I_a·O_d + Σ_lights att·S·I_l·(k_d·O_d·max(0, N·L) + specular)
+// with specular k_s·O_s·(R·V)^n (Phong) or k_s·O_s·(N·H)^n (Blinn-Phong), O_s white
+// when the material has none, or Schlick's F(V·H) with a coloured F0 in place
+// of k_s·O_s for metallic highlights. S is the shadow term, att the attenuation.
+
+fn attenuation(light: GpuLight, d: f32) -> f32 {
+    switch light.attenuation {
+        case ATTENUATION_INVERSE_SQUARE: { return 1.0 / (d * d); }
+        case ATTENUATION_POLYNOMIAL: {
+            let c = light.coefficients;
+            return min(1.0 / (c.x + c.y * d + c.z * d * d), 1.0);
+        }
+        default: { return 1.0; }
+    }
+}
+
+fn specular_term(m: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let h = normalize(l + v);
+    var cos_a: f32;
+    if (m.flags & MATERIAL_BLINN) != 0u {
+        cos_a = dot(n, h);
+    } else {
+        cos_a = dot(reflect_dir(-l, n), v);
+    }
+    let lobe = pow(max(cos_a, 0.0), m.shininess);
+    if (m.flags & MATERIAL_METALLIC) != 0u {
+        return schlick(m.f0, dot(v, h)) * lobe;
+    }
+    return m.ks * m.specular_color * lobe;
+}
+
+// `v` points from the surface towards the viewer.
+fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
+    var color = m.ka * globals.ambient * m.color;
+    for (var i = 0u; i < globals.light_count; i++) {
+        let light = lights[i];
+        var l: vec3<f32>;
+        var distance: f32;
+        var att = 1.0;
+        if light.kind == LIGHT_DIRECTIONAL {
+            l = -light.position;
+            distance = MISS;
+        } else {
+            let to_light = light.position - s.point;
+            distance = length(to_light);
+            l = to_light / distance;
+            att = attenuation(light, distance);
+        }
+        let n_dot_l = dot(s.shading, l);
+        // A surface facing away from the light gets nothing and casts no shadow ray.
+        if n_dot_l <= 0.0 || dot(s.geometric, l) <= 0.0 {
+            continue;
+        }
+        let visible = light_visibility(s.point, s.geometric, l, distance);
+        if all(visible == vec3<f32>(0.0)) {
+            continue;
+        }
+        let diffuse = m.kd * m.color * n_dot_l;
+        color += att * visible * light.radiance * (diffuse + specular_term(m, s.shading, l, v));
+    }
+    return color;
+}
+
+// s_o at distance d: linear from near_scale at `near` to far_scale at `far`.
+fn depth_cue_scale(d: f32) -> f32 {
+    let dc = globals.depth_cue;
+    let f = clamp((d - dc.x) / (dc.y - dc.x), 0.0, 1.0);
+    return mix(dc.z, dc.w, f);
+}

@@ -1,0 +1,13 @@
+// Hard shadows: how much of a light reaches `point`. Occluders beyond the light
+// do not count; the ray leaves along the geometric normal so smooth-shaded
+// surfaces do not shadow themselves at the terminator.
+
+fn light_visibility(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>, distance: f32) -> vec3<f32> {
+    if (globals.flags & FLAG_SHADOWS) == 0u {
+        return vec3<f32>(1.0);
+    }
+    count_ray(STAT_SHADOW);
+    let eps = ray_epsilon(point);
+    let ray = Ray(point + geometric * eps, to_light);
+    return traverse(ray, 0.0, distance - eps, true).transmittance;
+}

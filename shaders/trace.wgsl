@@ -1,0 +1,122 @@
+// The trace kernel: one sample per pixel per dispatch, Whitted's ray tree walked
+// with an explicit stack (WGSL has no recursion). Each pending ray carries the
+// weight its colour contributes to the pixel.
+
+const RAY_STACK: u32 = 17u; // MAX_DEPTH_LIMIT + 1: each level leaves one sibling pending
+const WORKGROUP: u32 = 64u;
+
+var<workgroup> group_stats: array<atomic<u32>, STAT_COUNT>;
+
+var<private> local_stats: array<u32, STAT_COUNT>;
+
+fn count_ray(kind: u32) {
+    local_stats[kind] += 1u;
+}
+
+struct PendingRay {
+    ray: Ray,
+    weight: vec3<f32>,
+    depth: u32,
+}
+
+fn trace_pixel(eye: Ray) -> vec3<f32> {
+    var stack: array<PendingRay, RAY_STACK>;
+    stack[0] = PendingRay(eye, vec3<f32>(1.0), 1u);
+    var top = 1u;
+    var color = vec3<f32>(0.0);
+    while top > 0u {
+        top--;
+        let pending = stack[top];
+        let ray = pending.ray;
+        let hit = traverse(ray, 0.0, MISS, false);
+        if pending.depth == 1u {
+            count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
+        }
+        if hit.t == MISS {
+            color += pending.weight * globals.background;
+            continue;
+        }
+        let p = prims[hit.prim];
+        let m = materials[prim_material(p)];
+        let s = surface_at(p, ray, hit.t);
+        let local = shade(s, m, -ray.dir);
+        var weight = pending.weight;
+        if (globals.flags & FLAG_DEPTH_CUE) != 0u {
+            let so = depth_cue_scale(hit.t);
+            color += weight * (so * local + (1.0 - so) * globals.depth_cue_color);
+            weight *= so;
+        } else {
+            color += weight * local;
+        }
+        if pending.depth >= globals.max_depth {
+            continue;
+        }
+
+        // Entering when the ray meets the front of the surface; the outside is air.
+        let eta = select(1.0 / m.ior, m.ior, s.backface);
+        var k_reflect = select(vec3<f32>(0.0), m.reflect, (globals.flags & FLAG_REFLECTIONS) != 0u);
+        var k_refract = select(vec3<f32>(0.0), m.transmit, (globals.flags & FLAG_REFRACTIONS) != 0u);
+        let refracted = refract_dir(ray.dir, s.shading, eta);
+        if any(k_refract > vec3<f32>(0.0)) {
+            if refracted.w == 0.0 {
+                // Total internal reflection: the transmitted share is reflected.
+                k_reflect += k_refract;
+                k_refract = vec3<f32>(0.0);
+            } else if (m.flags & MATERIAL_FRESNEL) != 0u {
+                let cos_i = -dot(ray.dir, s.shading);
+                let cos_t = -dot(refracted.xyz, s.shading);
+                // Schlick with the cosine on the less dense side.
+                let f = schlick(vec3<f32>(dielectric_f0(1.0, m.ior)), select(cos_i, cos_t, eta > 1.0)).x;
+                k_reflect += k_refract * f;
+                k_refract *= 1.0 - f;
+            }
+        }
+        let eps = ray_epsilon(s.point);
+        let w_reflect = weight * k_reflect;
+        if any(w_reflect > vec3<f32>(globals.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
+            count_ray(STAT_REFLECT);
+            let r = Ray(s.point + s.geometric * eps, reflect_dir(ray.dir, s.shading));
+            stack[top] = PendingRay(r, w_reflect, pending.depth + 1u);
+            top++;
+        }
+        let w_refract = weight * k_refract;
+        if any(w_refract > vec3<f32>(globals.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
+            count_ray(STAT_REFRACT);
+            let r = Ray(s.point - s.geometric * eps, refracted.xyz);
+            stack[top] = PendingRay(r, w_refract, pending.depth + 1u);
+            top++;
+        }
+    }
+    return color;
+}
+
+@compute @workgroup_size(8, 8)
+fn trace_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    if lid < STAT_COUNT {
+        atomicStore(&group_stats[lid], 0u);
+    }
+    workgroupBarrier();
+
+    let pixel = gid.xy + globals.tile_origin;
+    if pixel.x < globals.width && pixel.y < globals.height {
+        let eye = camera_ray(vec2<f32>(pixel) + vec2<f32>(0.5));
+        let color = trace_pixel(eye);
+        let index = pixel.y * globals.width + pixel.x;
+        accum[index] += vec4<f32>(color, 1.0);
+    }
+
+    // Ray counts: summed per workgroup first, so the device-wide atomics see one
+    // add per workgroup instead of one per ray.
+    for (var k = 0u; k < STAT_COUNT; k++) {
+        if local_stats[k] != 0u {
+            atomicAdd(&group_stats[k], local_stats[k]);
+        }
+    }
+    workgroupBarrier();
+    if lid < STAT_COUNT {
+        let total = atomicLoad(&group_stats[lid]);
+        if total != 0u {
+            atomicAdd(&stats[lid], total);
+        }
+    }
+}

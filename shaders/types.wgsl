@@ -1,0 +1,125 @@
+// Structs shared by the kernels. Each has a Rust twin of the same name in
+// crates/glint-scene/src/gpu_types.rs (or bvh.rs for Node); a naga test checks
+// that sizes and member offsets agree.
+
+const PROJECTION_PERSPECTIVE: u32 = 0u;
+const PROJECTION_ORTHOGRAPHIC: u32 = 1u;
+
+const PRIM_SPHERE: u32 = 0u;
+const PRIM_TRIANGLE: u32 = 1u;
+const PRIM_POLYGON: u32 = 2u;
+const PRIM_CONE: u32 = 3u;
+
+const LIGHT_POINT: u32 = 0u;
+const LIGHT_DIRECTIONAL: u32 = 1u;
+
+const ATTENUATION_NONE: u32 = 0u;
+const ATTENUATION_INVERSE_SQUARE: u32 = 1u;
+const ATTENUATION_POLYNOMIAL: u32 = 2u;
+
+const MATERIAL_BLINN: u32 = 1u;
+const MATERIAL_METALLIC: u32 = 2u;
+const MATERIAL_FRESNEL: u32 = 4u;
+
+const FLAG_SHADOWS: u32 = 1u;
+const FLAG_TINTED_SHADOWS: u32 = 2u;
+const FLAG_REFLECTIONS: u32 = 4u;
+const FLAG_REFRACTIONS: u32 = 8u;
+const FLAG_DEPTH_CUE: u32 = 16u;
+
+const VIEW_SHADED: u32 = 0u;
+
+// Indices into the ray statistics counters.
+const STAT_EYE_HIT: u32 = 0u;
+const STAT_EYE_MISS: u32 = 1u;
+const STAT_SHADOW: u32 = 2u;
+const STAT_REFLECT: u32 = 3u;
+const STAT_REFRACT: u32 = 4u;
+const STAT_COUNT: u32 = 5u;
+
+// A ray that misses has t = MISS.
+const MISS: f32 = 3.4e38;
+
+struct GpuCamera {
+    eye: vec3<f32>,
+    projection: u32,
+    u: vec3<f32>,
+    half_width: f32,
+    v: vec3<f32>,
+    half_height: f32,
+    w: vec3<f32>,
+    _pad: f32,
+}
+
+struct Globals {
+    camera: GpuCamera,
+    background: vec3<f32>,
+    width: u32,
+    ambient: vec3<f32>,
+    height: u32,
+    depth_cue_color: vec3<f32>,
+    light_count: u32,
+    depth_cue: vec4<f32>, // near, far, near_scale, far_scale
+    max_depth: u32,
+    cutoff: f32,
+    flags: u32,
+    view: u32,
+    tile_origin: vec2<u32>,
+    sample_index: u32,
+    seed: u32,
+}
+
+struct GpuLight {
+    position: vec3<f32>, // travel direction for a directional light
+    kind: u32,
+    radiance: vec3<f32>,
+    attenuation: u32,
+    coefficients: vec4<f32>,
+}
+
+struct GpuMaterial {
+    color: vec3<f32>,
+    ka: f32,
+    specular_color: vec3<f32>,
+    kd: f32,
+    reflect: vec3<f32>,
+    ks: f32,
+    transmit: vec3<f32>,
+    shininess: f32,
+    f0: vec3<f32>,
+    ior: f32,
+    flags: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+struct GpuPrim {
+    a: vec4<f32>,
+    b: vec4<f32>,
+    c: vec4<f32>,
+    kind_material: u32,
+    object: u32,
+    first: u32,
+    count: u32,
+}
+
+struct Node {
+    min: vec3<f32>,
+    left_or_first: u32,
+    max: vec3<f32>,
+    count: u32,
+}
+
+struct Ray {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+}
+
+fn prim_kind(p: GpuPrim) -> u32 {
+    return p.kind_material & 0xffu;
+}
+
+fn prim_material(p: GpuPrim) -> u32 {
+    return p.kind_material >> 8u;
+}
