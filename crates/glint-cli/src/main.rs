@@ -1,1 +1,78 @@
-fn main(){}
+//! `glint`: render scenes on the GPU from the command line.
+
+mod info;
+mod render;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Exit codes, documented in README.md.
+pub mod exit {
+    /// The command line was wrong (clap's own code).
+    pub const USAGE: u8 = 2;
+    /// A scene file could not be read or is malformed.
+    pub const INPUT: u8 = 3;
+    /// No usable GPU, or the GPU failed.
+    pub const GPU: u8 = 4;
+    /// The output file could not be written.
+    pub const OUTPUT: u8 = 5;
+}
+
+#[derive(Parser)]
+#[command(name = "glint", version, about = "A GPU Whitted-style ray tracer")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene to an image file.
+    Render(render::RenderArgs),
+    /// Show the GPU adapter Glint would use and its limits.
+    Info,
+}
+
+/// An error with the exit code it maps to.
+pub struct Failure {
+    pub code: u8,
+    pub message: String,
+}
+
+impl Failure {
+    pub fn new(code: u8, message: impl std::fmt::Display) -> Self {
+        Self { code, message: message.to_string() }
+    }
+}
+
+impl From<glint_gpu::GpuError> for Failure {
+    fn from(e: glint_gpu::GpuError) -> Self {
+        let code = match e {
+            glint_gpu::GpuError::Output(_) => exit::OUTPUT,
+            _ => exit::GPU,
+        };
+        Failure::new(code, e)
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { exit::USAGE } else { 0 });
+        }
+    };
+    let result = match cli.command {
+        Command::Render(args) => render::run(&args),
+        Command::Info => info::run(),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("glint: {}", f.message);
+            ExitCode::from(f.code)
+        }
+    }
+}

@@ -3,11 +3,13 @@
 //! accumulated samples and reads the image back.
 
 pub mod device;
+pub mod frame;
 pub mod output;
 pub mod renderer;
 pub mod shaders;
 
 pub use device::{Gpu, ADAPTER_ENV};
+pub use frame::{Acceleration, Prepared};
 pub use output::{write_image, Image};
 pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
 

@@ -44,9 +44,12 @@ pub fn write_image(image: &Image, path: &Path) -> Result<(), GpuError> {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".glint-")
-        .suffix(".tmp")
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".glint-").suffix(".tmp");
+    // Temporary files are private by default; the image gets ordinary permissions.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let mut tmp = builder
         .tempfile_in(dir)
         .map_err(|e| fail(&e))?;
     let mut writer = std::io::BufWriter::new(tmp.as_file_mut());

@@ -1,0 +1,110 @@
+//! The `glint` binary end to end: renders, exit codes and one-line errors.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn glint(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_glint")).args(args).output().expect("glint runs")
+}
+
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn renders_the_default_scene_at_the_requested_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("showcase.png");
+    let scene = scenes().join("showcase.toml");
+    let o = glint(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "160", "--height", "100"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("Mrays/s"), "{}", stderr(&o));
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (160, 100));
+    let distinct: std::collections::HashSet<_> = img.pixels().collect();
+    assert!(distinct.len() > 100, "the image is nearly uniform: {} colours", distinct.len());
+    // Nothing but the image is left beside it.
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("showcase.png")]);
+}
+
+#[test]
+fn stats_json_is_one_object_with_the_ray_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s.png");
+    let scene = scenes().join("showcase.toml");
+    let o = glint(&[
+        "render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "40", "--height", "25", "--stats", "--json", "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8(o.stdout).unwrap();
+    assert_eq!(stdout.lines().count(), 1, "{stdout}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    for key in ["eye_hit", "eye_miss", "shadow", "reflect", "refract"] {
+        assert!(v[key].is_u64(), "{key} missing in {stdout}");
+    }
+    assert_eq!(v["eye_hit"].as_u64().unwrap() + v["eye_miss"].as_u64().unwrap(), 40 * 25);
+}
+
+#[test]
+fn info_names_the_adapter_and_limits() {
+    let o = glint(&["info"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8(o.stdout).unwrap();
+    for needle in ["adapter:", "backend:", "device type:", "driver:", "max storage buffer binding size", "max buffer size", "max workgroup size"] {
+        assert!(stdout.contains(needle), "{needle} missing in:\n{stdout}");
+    }
+}
+
+#[test]
+fn bad_inputs_fail_with_one_line_and_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[image]\nwidth = 10\nheight = 10\n[camera]\neye = [0,0,1]\nlook_at = [0,0,0]\nfov = \"wide\"\n").unwrap();
+    let out = dir.path().join("out.png");
+    let cases: [(Vec<String>, i32, String); 4] = [
+        (vec![bad.display().to_string()], 3, format!("{}:7:", bad.display())),
+        (vec![dir.path().join("missing.toml").display().to_string()], 3, "missing.toml".into()),
+        (vec![scenes().join("showcase.toml").display().to_string(), "--width".into(), "0".into()], 2, "width".into()),
+        (vec![scenes().join("showcase.toml").display().to_string(), "--max-depth".into(), "1000".into()], 2, "max-depth".into()),
+    ];
+    for (extra, code, needle) in cases {
+        let mut args = vec!["render".to_string(), "-o".into(), out.display().to_string()];
+        args.extend(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = glint(&args);
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(&needle), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+        assert!(!out.exists(), "{args:?} left an output file");
+    }
+    // A scene error is exactly one line.
+    let o = glint(&["render", bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(stderr(&o).trim_end().lines().count(), 1, "{}", stderr(&o));
+}
+
+#[test]
+fn unsupported_output_format_is_refused_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.bmpx");
+    let o = glint(&["render", scenes().join("showcase.toml").to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
+#[test]
+fn failed_write_keeps_an_existing_file_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("keep.png");
+    std::fs::write(&out, b"precious").unwrap();
+    // A scene error after the output path was named must not touch the file.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "not toml at all [").unwrap();
+    let o = glint(&["render", bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(3));
+    assert_eq!(std::fs::read(&out).unwrap(), b"precious");
+}

@@ -1,0 +1,51 @@
+//! Shared by the GPU tests: one device for the whole test binary, and scenes
+//! written inline as TOML.
+#![allow(dead_code)] // each test binary uses a different part of this module
+
+use std::path::Path;
+use std::sync::OnceLock;
+
+use glint_gpu::shaders::ShaderSource;
+use glint_gpu::{Acceleration, Gpu, Image, RayStats, RenderOptions, Renderer, ToneMap};
+use glint_scene::Scene;
+
+/// The device every GPU test uses. No adapter is a failure, never a skip.
+pub fn gpu() -> &'static Gpu {
+    static GPU: OnceLock<Gpu> = OnceLock::new();
+    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter (lavapipe in CI): {e}")))
+}
+
+pub fn renderer() -> &'static Renderer {
+    static RENDERER: OnceLock<Renderer> = OnceLock::new();
+    RENDERER.get_or_init(|| {
+        let gpu = gpu();
+        Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)
+            .unwrap_or_else(|e| panic!("{e}"))
+    })
+}
+
+pub fn parse(toml: &str) -> Scene {
+    glint_scene::toml_scene::parse(toml, Path::new("inline.toml")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+pub fn render(scene: &Scene) -> (Image, RayStats) {
+    render_with(scene, Acceleration::Bvh)
+}
+
+pub fn render_with(scene: &Scene, acceleration: Acceleration) -> (Image, RayStats) {
+    let r = renderer();
+    let prepared = r.prepare(scene, scene.width, scene.height, acceleration).unwrap_or_else(|e| panic!("{e}"));
+    let options = RenderOptions { width: scene.width, height: scene.height, exposure: 1.0, tone_map: ToneMap::Clamp };
+    r.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Asserts two colours agree per channel within `tol`.
+#[track_caller]
+pub fn assert_close(actual: [f32; 3], expected: [f64; 3], tol: f64, what: &str) {
+    for c in 0..3 {
+        assert!(
+            (f64::from(actual[c]) - expected[c]).abs() <= tol,
+            "{what}: got {actual:?}, expected {expected:?} (±{tol})"
+        );
+    }
+}
