@@ -8,6 +8,8 @@ struct Hit {
     prim: u32,
     // For any-hit queries: light let through by transmissive occluders.
     transmittance: vec3<f32>,
+    // Nodes visited, for the heat-map view.
+    nodes: u32,
 }
 
 // Entry distance of the ray into the box, or MISS.
@@ -20,13 +22,13 @@ fn box_entry(lo: vec3<f32>, hi: vec3<f32>, origin: vec3<f32>, inv_dir: vec3<f32>
 }
 
 // Closest hit in (t_min, t_max) when `any_hit` is false. With `any_hit`, a shadow
-// query: stops at the first opaque occluder (transmittance 0); with tinted
-// shadows, transmissive occluders multiply the transmittance by their k_t.
-fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool) -> Hit {
-    var hit = Hit(MISS, 0u, vec3<f32>(1.0));
+// query: stops at the first opaque occluder (transmittance 0); with `tinted`,
+// transmissive occluders let light through, multiplying the transmittance by
+// their k_t, and only opaque ones stop it.
+fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) -> Hit {
+    var hit = Hit(MISS, 0u, vec3<f32>(1.0), 1u);
     var t_max = t_max_in;
     let inv_dir = 1.0 / ray.dir;
-    let tinted = (globals.flags & FLAG_TINTED_SHADOWS) != 0u;
     var stack: array<u32, BVH_STACK>;
     var top = 0u;
     var index = 0u;
@@ -35,6 +37,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool) -> Hit {
     }
     loop {
         let node = nodes[index];
+        hit.nodes++;
         if node.count > 0u {
             for (var i = node.left_or_first; i < node.left_or_first + node.count; i++) {
                 let p = prims[i];

@@ -1,16 +1,30 @@
-// Resolve: the average of the accumulated samples, times the exposure, tone
-// mapped and encoded as sRGB, one display value in [0, 1] per channel.
+// Resolve: the average of the accumulated samples becomes a display value in
+// [0, 1] per channel. Radiance views (shaded, albedo, diffuse) are scaled by the
+// exposure, tone mapped and encoded as sRGB; the data views are mapped to
+// colours: normals as 0.5 + 0.5·n, depth as grey (white near, black at
+// `scale`), object ids as distinct colours, heat maps as a false-colour ramp of
+// nodes visited over `scale`. Misses are black.
 
 struct ResolveParams {
     pixel_count: u32,
     tone_map: u32, // 0 clamp, 1 Reinhard, 2 ACES filmic
     exposure: f32,
-    _pad: u32,
+    view: u32,
+    scale: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 const TONE_CLAMP: u32 = 0u;
 const TONE_REINHARD: u32 = 1u;
 const TONE_ACES: u32 = 2u;
+
+// Must match VIEW_ in types.wgsl (which this kernel does not include).
+const VIEW_NORMAL: u32 = 1u;
+const VIEW_DEPTH: u32 = 2u;
+const VIEW_ID: u32 = 5u;
+const VIEW_HEATMAP: u32 = 6u;
 
 @group(0) @binding(0) var<uniform> params: ResolveParams;
 @group(0) @binding(1) var<storage, read> samples: array<vec4<f32>>;
@@ -33,14 +47,50 @@ fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
     return select(hi, lo, c <= vec3<f32>(0.0031308));
 }
 
+// Blue → cyan → green → yellow → red as t goes from 0 to 1.
+fn heat_ramp(t: f32) -> vec3<f32> {
+    let x = clamp(t, 0.0, 1.0) * 4.0;
+    return clamp(vec3<f32>(x - 2.0, select(x, 4.0 - x, x > 2.0), 2.0 - x), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn id_colour(id: f32) -> vec3<f32> {
+    var h = u32(id) * 2654435761u;
+    h ^= h >> 15u;
+    return 0.25 + 0.75 * vec3<f32>(f32(h & 255u), f32((h >> 8u) & 255u), f32((h >> 16u) & 255u)) / 255.0;
+}
+
+fn finite_or_zero(c: vec3<f32>) -> vec3<f32> {
+    // NaN fails every comparison, so it becomes 0 here, as do infinities.
+    return select(vec3<f32>(0.0), c, abs(c) <= vec3<f32>(3.0e38));
+}
+
+fn display_value(s: vec4<f32>) -> vec3<f32> {
+    let v = s.rgb / max(s.w, 1.0);
+    switch params.view {
+        case VIEW_NORMAL: {
+            return select(vec3<f32>(0.0), 0.5 + 0.5 * v, dot(v, v) > 0.25);
+        }
+        case VIEW_DEPTH: {
+            return vec3<f32>(select(0.0, 1.0 - clamp(v.x / params.scale, 0.0, 1.0), v.x < 1.0e38));
+        }
+        case VIEW_ID: {
+            return select(vec3<f32>(0.0), id_colour(v.x), v.x >= 0.0);
+        }
+        case VIEW_HEATMAP: {
+            return heat_ramp(v.x / params.scale);
+        }
+        default: {
+            let linear = max(finite_or_zero(v) * params.exposure, vec3<f32>(0.0));
+            return srgb_encode(clamp(tone_map(linear), vec3<f32>(0.0), vec3<f32>(1.0)));
+        }
+    }
+}
+
 @compute @workgroup_size(64)
 fn resolve_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = gid.y * groups.x * 64u + gid.x;
     if i >= params.pixel_count {
         return;
     }
-    let s = samples[i];
-    let linear = s.rgb / max(s.w, 1.0) * params.exposure;
-    let mapped = clamp(tone_map(max(linear, vec3<f32>(0.0))), vec3<f32>(0.0), vec3<f32>(1.0));
-    display[i] = vec4<f32>(srgb_encode(mapped), 1.0);
+    display[i] = vec4<f32>(finite_or_zero(display_value(samples[i])), 1.0);
 }

@@ -9,5 +9,6 @@ fn light_visibility(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>,
     count_ray(STAT_SHADOW);
     let eps = ray_epsilon(point);
     let ray = Ray(point + geometric * eps, to_light);
-    return traverse(ray, 0.0, distance - eps, true).transmittance;
+    let tinted = (globals.flags & FLAG_TINTED_SHADOWS) != 0u;
+    return traverse(ray, 0.0, distance - eps, true, tinted).transmittance;
 }

@@ -28,7 +28,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         top--;
         let pending = stack[top];
         let ray = pending.ray;
-        let hit = traverse(ray, 0.0, MISS, false);
+        let hit = traverse(ray, 0.0, MISS, false, false);
         if pending.depth == 1u {
             count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
         }
@@ -90,6 +90,31 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
     return color;
 }
 
+// The values of the debug views and AOVs, from the primary ray alone.
+fn primary_view(eye: Ray) -> vec3<f32> {
+    let hit = traverse(eye, 0.0, MISS, false, false);
+    count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
+    if globals.view == VIEW_HEATMAP {
+        return vec3<f32>(f32(hit.nodes));
+    }
+    if hit.t == MISS {
+        switch globals.view {
+            case VIEW_DEPTH: { return vec3<f32>(MISS); }
+            case VIEW_ID: { return vec3<f32>(-1.0); }
+            default: { return vec3<f32>(0.0); }
+        }
+    }
+    let p = prims[hit.prim];
+    let m = materials[prim_material(p)];
+    switch globals.view {
+        case VIEW_NORMAL: { return surface_at(p, eye, hit.t).geometric; }
+        case VIEW_DEPTH: { return vec3<f32>(hit.t); }
+        case VIEW_ALBEDO: { return m.color; }
+        case VIEW_ID: { return vec3<f32>(f32(p.object)); }
+        default: { return diffuse_only(surface_at(p, eye, hit.t), m); }
+    }
+}
+
 @compute @workgroup_size(8, 8)
 fn trace_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     if lid < STAT_COUNT {
@@ -99,8 +124,13 @@ fn trace_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invo
 
     let pixel = gid.xy + globals.tile_origin;
     if pixel.x < globals.width && pixel.y < globals.height {
-        let eye = camera_ray(vec2<f32>(pixel) + vec2<f32>(0.5));
-        let color = trace_pixel(eye);
+        let eye = camera_ray(vec2<f32>(pixel) + sample_offset(pixel));
+        var color: vec3<f32>;
+        if globals.view == VIEW_SHADED {
+            color = trace_pixel(eye);
+        } else {
+            color = primary_view(eye);
+        }
         let index = pixel.y * globals.width + pixel.x;
         accum[index] += vec4<f32>(color, 1.0);
     }

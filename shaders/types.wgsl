@@ -27,7 +27,17 @@ const FLAG_REFLECTIONS: u32 = 4u;
 const FLAG_REFRACTIONS: u32 = 8u;
 const FLAG_DEPTH_CUE: u32 = 16u;
 
+// What the trace kernel writes per pixel (the `view` of Globals).
 const VIEW_SHADED: u32 = 0u;
+const VIEW_NORMAL: u32 = 1u;   // unit geometric normal, turned towards the viewer; 0 on a miss
+const VIEW_DEPTH: u32 = 2u;    // distance along the unit primary ray; MISS on a miss
+const VIEW_ALBEDO: u32 = 3u;   // O_d of the material hit; 0 on a miss
+const VIEW_DIFFUSE: u32 = 4u;  // direct diffuse light only (see shade.wgsl)
+const VIEW_ID: u32 = 5u;       // object index; −1 on a miss
+const VIEW_HEATMAP: u32 = 6u;  // BVH nodes visited by the primary ray
+
+const FILTER_BOX: u32 = 0u;
+const FILTER_TENT: u32 = 1u;
 
 // Indices into the ray statistics counters.
 const STAT_EYE_HIT: u32 = 0u;
@@ -67,6 +77,12 @@ struct Globals {
     tile_origin: vec2<u32>,
     sample_index: u32,
     seed: u32,
+    // Samples per pixel of this render (stratified); 1 traces the pixel centre,
+    // 0 means an open-ended progressive render (jittered, unstratified).
+    sample_count: u32,
+    pixel_filter: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 struct GpuLight {

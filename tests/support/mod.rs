@@ -6,7 +6,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Gpu, Image, RayStats, RenderOptions, Renderer, ToneMap};
+use glint_gpu::{Acceleration, Gpu, Image, RayStats, RenderOptions, Renderer};
 use glint_scene::Scene;
 
 /// The device every GPU test uses. No adapter is a failure, never a skip.
@@ -33,9 +33,14 @@ pub fn render(scene: &Scene) -> (Image, RayStats) {
 }
 
 pub fn render_with(scene: &Scene, acceleration: Acceleration) -> (Image, RayStats) {
+    render_options(scene, acceleration, RenderOptions::default())
+}
+
+/// Renders with `options`; the view scale is chosen for the scene when left at 1.
+pub fn render_options(scene: &Scene, acceleration: Acceleration, options: RenderOptions) -> (Image, RayStats) {
     let r = renderer();
     let prepared = r.prepare(scene, scene.width, scene.height, acceleration).unwrap_or_else(|e| panic!("{e}"));
-    let options = RenderOptions { width: scene.width, height: scene.height, exposure: 1.0, tone_map: ToneMap::Clamp };
+    let options = RenderOptions { view_scale: prepared.view_scale(options.view), ..options };
     r.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
 }
 

@@ -6,7 +6,8 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Gpu, RayStats, RenderOptions, Renderer, ToneMap};
+use glint_gpu::{Acceleration, Format, Gpu, Image, PngBits, RayStats, RenderOptions, Renderer, ToneMap};
+use glint_scene::gpu_types::{Filter, View};
 use glint_scene::scene::MAX_DEPTH_LIMIT;
 use glint_scene::toml_scene::MAX_IMAGE_SIDE;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -15,9 +16,9 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Scene file (.toml)
+    /// Scene file (.toml, .nff or .obj)
     scene: PathBuf,
-    /// Output image (.png)
+    /// Output image: .png (display values), .exr or .pfm (linear float)
     #[arg(short, long)]
     output: PathBuf,
     /// Image width in pixels (default: the scene's)
@@ -33,6 +34,25 @@ pub struct RenderArgs {
     /// little it contributes (as classic benchmark procedures require)
     #[arg(long)]
     no_cutoff: bool,
+    /// Samples per pixel, stratified and jittered (1: through each pixel centre)
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    spp: u32,
+    /// Seed of the sample jitter: the same seed gives the same image
+    #[arg(long, default_value_t = 0)]
+    seed: u32,
+    /// Reconstruction filter for --spp > 1
+    #[arg(long, value_enum, default_value_t = FilterArg::Box)]
+    filter: FilterArg,
+    /// What to show: the full render or a debug view (one ray per pixel centre)
+    #[arg(long, value_enum, default_value_t = ViewArg::Shaded)]
+    view: ViewArg,
+    /// Also write an arbitrary output variable, NAME=PATH with NAME one of depth,
+    /// normal, albedo, id and PATH a .pfm or .exr file (repeatable)
+    #[arg(long, value_name = "NAME=PATH", value_parser = parse_aov)]
+    aov: Vec<(ViewArg, PathBuf)>,
+    /// Bits per channel of PNG output
+    #[arg(long, value_enum, default_value_t = BitsArg::Eight)]
+    bits: BitsArg,
     /// Multiply linear radiance by this before tone mapping
     #[arg(long, default_value_t = 1.0, value_parser = finite_positive)]
     exposure: f32,
@@ -51,6 +71,61 @@ pub struct RenderArgs {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum BitsArg {
+    #[value(name = "8")]
+    Eight,
+    #[value(name = "16")]
+    Sixteen,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum FilterArg {
+    Box,
+    Tent,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, ValueEnum)]
+enum ViewArg {
+    Shaded,
+    Normals,
+    Depth,
+    Albedo,
+    Diffuse,
+    Id,
+    Heatmap,
+}
+
+impl ViewArg {
+    fn view(self) -> View {
+        match self {
+            ViewArg::Shaded => View::Shaded,
+            ViewArg::Normals => View::Normal,
+            ViewArg::Depth => View::Depth,
+            ViewArg::Albedo => View::Albedo,
+            ViewArg::Diffuse => View::Diffuse,
+            ViewArg::Id => View::Id,
+            ViewArg::Heatmap => View::Heatmap,
+        }
+    }
+}
+
+fn parse_aov(s: &str) -> Result<(ViewArg, PathBuf), String> {
+    let (name, path) = s.split_once('=').ok_or("expected NAME=PATH")?;
+    let view = match name {
+        "depth" => ViewArg::Depth,
+        "normal" => ViewArg::Normals,
+        "albedo" => ViewArg::Albedo,
+        "id" => ViewArg::Id,
+        other => return Err(format!("unknown AOV `{other}`: expected depth, normal, albedo or id")),
+    };
+    let path = PathBuf::from(path);
+    match Format::from_path(&path) {
+        Ok(Format::Exr | Format::Pfm) => Ok((view, path)),
+        _ => Err(format!("{}: an AOV is written as .pfm or .exr", path.display())),
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum ToneMapArg {
     Clamp,
     Reinhard,
@@ -66,15 +141,7 @@ fn finite_positive(s: &str) -> Result<f32, String> {
 
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     // Refuse an unwritable output format before doing any work.
-    match image::ImageFormat::from_path(&args.output) {
-        Ok(image::ImageFormat::Png) => {}
-        _ => {
-            return Err(Failure::new(
-                exit::USAGE,
-                format!("{}: unsupported output format: use .png", args.output.display()),
-            ));
-        }
-    }
+    Format::from_path(&args.output).map_err(|e| Failure::new(exit::USAGE, e))?;
 
     let mut scene = glint_scene::load(&args.scene).map_err(|e| Failure::new(exit::INPUT, e))?;
     for warning in &scene.warnings {
@@ -96,15 +163,23 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
     let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
 
+    let view = args.view.view();
     let options = RenderOptions {
-        width,
-        height,
+        view,
+        spp: if view.is_primary_only() { 1 } else { args.spp },
+        seed: args.seed,
+        filter: match args.filter {
+            FilterArg::Box => Filter::Box,
+            FilterArg::Tent => Filter::Tent,
+        },
         exposure: args.exposure,
         tone_map: match args.tone_map {
             ToneMapArg::Clamp => ToneMap::Clamp,
             ToneMapArg::Reinhard => ToneMap::Reinhard,
             ToneMapArg::Aces => ToneMap::Aces,
         },
+        view_scale: prepared.view_scale(view),
+        band_rows: None,
     };
     let bar = progress_bar(args.quiet);
     let start = Instant::now();
@@ -112,13 +187,30 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         if start.elapsed() > Duration::from_secs(1) && bar.is_hidden() && !args.quiet && std::io::stderr().is_terminal() {
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
-        bar.set_length(u64::from(total));
-        bar.set_position(u64::from(done));
+        bar.set_length(total);
+        bar.set_position(done);
     })?;
     let elapsed = start.elapsed();
     bar.finish_and_clear();
 
-    glint_gpu::write_image(&image, &args.output)?;
+    // Every image is rendered before any is written, so a failure writes nothing.
+    let mut outputs: Vec<(Image, &PathBuf)> = vec![(image, &args.output)];
+    for (aov, path) in &args.aov {
+        let aov_view = aov.view();
+        let aov_options = RenderOptions { view: aov_view, spp: 1, view_scale: prepared.view_scale(aov_view), ..options };
+        let (image, _) = renderer.render(&prepared.buffers, &aov_options, &mut |_, _| {})?;
+        outputs.push((if aov_view == View::Depth { image.with_misses_at_infinity() } else { image }, path));
+    }
+    if view == View::Depth {
+        outputs[0].0 = outputs[0].0.clone().with_misses_at_infinity();
+    }
+    let bits = match args.bits {
+        BitsArg::Eight => PngBits::Eight,
+        BitsArg::Sixteen => PngBits::Sixteen,
+    };
+    for (image, path) in &outputs {
+        glint_gpu::write_image(image, path, bits)?;
+    }
 
     if !args.quiet {
         eprintln!(
@@ -141,7 +233,7 @@ fn progress_bar(quiet: bool) -> ProgressBar {
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
     if !quiet {
         bar.set_style(
-            ProgressStyle::with_template("{spinner} rendering [{bar:40}] {pos}/{len} tiles {elapsed_precise}")
+            ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% {elapsed_precise} (eta {eta})")
                 .expect("the template is valid")
                 .progress_chars("=> "),
         );

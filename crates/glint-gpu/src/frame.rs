@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use glint_scene::bvh::Bvh;
-use glint_scene::gpu_types;
+use glint_scene::gpu_types::{self, View};
 use glint_scene::Scene;
 
 use crate::{GpuError, Renderer, SceneBuffers};
@@ -25,6 +25,20 @@ pub struct Prepared {
     pub primitives: usize,
     pub bvh_nodes: usize,
     pub bvh_build: Duration,
+    /// Distance from the eye to the farthest corner of the scene's bounds.
+    pub depth_extent: f32,
+}
+
+impl Prepared {
+    /// The `RenderOptions::view_scale` that shows `view` well for this scene.
+    pub fn view_scale(&self, view: View) -> f32 {
+        match view {
+            View::Depth => self.depth_extent,
+            // Twice the depth of a balanced tree is a busy pixel.
+            View::Heatmap => 2.0 * (self.bvh_nodes.max(2) as f32).log2() + 8.0,
+            _ => 1.0,
+        }
+    }
 }
 
 impl Renderer {
@@ -41,6 +55,13 @@ impl Renderer {
         let packed = gpu_types::pack(scene, &bvh);
         let globals = gpu_types::globals(scene, width, height, packed.light_count);
         let buffers = self.upload(&packed, globals)?;
-        Ok(Prepared { buffers, primitives: bounds.len(), bvh_nodes: bvh.nodes.len(), bvh_build })
+        let eye = scene.camera.eye;
+        let depth_extent = bounds
+            .iter()
+            .flat_map(|(lo, hi)| [*lo, *hi])
+            .map(|corner| corner.distance(eye))
+            .fold(0.0f32, f32::max)
+            .max(f32::MIN_POSITIVE);
+        Ok(Prepared { buffers, primitives: bounds.len(), bvh_nodes: bvh.nodes.len(), bvh_build, depth_extent })
     }
 }

@@ -1,5 +1,6 @@
-//! Images read back from the device and written to files atomically.
+//! Images read back from the device, and writing them to files atomically.
 
+use std::io::Write;
 use std::path::Path;
 
 use crate::GpuError;
@@ -9,37 +10,98 @@ use crate::GpuError;
 pub struct Image {
     pub width: u32,
     pub height: u32,
-    /// Tone-mapped, sRGB-encoded values in [0, 1].
+    /// Tone-mapped, display-encoded values in [0, 1].
     pub display: Vec<[f32; 4]>,
-    /// Linear radiance (after exposure), for float outputs and tests.
+    /// Linear radiance (after exposure), or the raw values of a data view.
     pub linear: Vec<[f32; 4]>,
+}
+
+/// The file formats Glint writes, chosen by extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Display values, 8 or 16 bits per channel.
+    Png,
+    /// Linear 32-bit float RGB.
+    Exr,
+    /// Linear 32-bit float RGB, the Portable Float Map.
+    Pfm,
+}
+
+impl Format {
+    pub fn from_path(path: &Path) -> Result<Self, GpuError> {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("png") => Ok(Format::Png),
+            Some("exr") => Ok(Format::Exr),
+            Some("pfm") => Ok(Format::Pfm),
+            _ => Err(GpuError::Output(format!(
+                "{}: unsupported output format: use .png, .exr or .pfm",
+                path.display()
+            ))),
+        }
+    }
 }
 
 impl Image {
     pub fn to_rgb8(&self) -> image::RgbImage {
-        let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
         image::RgbImage::from_fn(self.width, self.height, |x, y| {
             let p = self.display[(y * self.width + x) as usize];
-            image::Rgb([q(p[0]), q(p[1]), q(p[2])])
+            image::Rgb([0, 1, 2].map(|c| (p[c].clamp(0.0, 1.0) * 255.0).round() as u8))
         })
     }
 
-    /// Linear radiance of pixel (x, y).
+    fn to_rgb16(&self) -> image::ImageBuffer<image::Rgb<u16>, Vec<u16>> {
+        image::ImageBuffer::from_fn(self.width, self.height, |x, y| {
+            let p = self.display[(y * self.width + x) as usize];
+            image::Rgb([0, 1, 2].map(|c| (p[c].clamp(0.0, 1.0) * 65535.0).round() as u16))
+        })
+    }
+
+    fn to_rgb32f(&self) -> image::Rgb32FImage {
+        image::Rgb32FImage::from_fn(self.width, self.height, |x, y| {
+            let p = self.linear[(y * self.width + x) as usize];
+            image::Rgb([p[0], p[1], p[2]])
+        })
+    }
+
+    /// Linear value of pixel (x, y).
     pub fn linear_at(&self, x: u32, y: u32) -> [f32; 3] {
         let p = self.linear[(y * self.width + x) as usize];
         [p[0], p[1], p[2]]
     }
+
+    /// Display value of pixel (x, y), in [0, 1].
+    pub fn display_at(&self, x: u32, y: u32) -> [f32; 3] {
+        let p = self.display[(y * self.width + x) as usize];
+        [p[0], p[1], p[2]]
+    }
+
+    /// Replaces the kernel's miss marker in a depth image by +∞.
+    pub fn with_misses_at_infinity(mut self) -> Self {
+        for p in &mut self.linear {
+            for c in &mut p[..3] {
+                if *c >= glint_scene::gpu_types::MISS_DEPTH {
+                    *c = f32::INFINITY;
+                }
+            }
+        }
+        self
+    }
 }
 
-/// Writes `image` to `path`, choosing the format by extension. The file is
+/// Bits per channel of PNG output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PngBits {
+    #[default]
+    Eight,
+    Sixteen,
+}
+
+/// Writes `image` to `path` in the format its extension names. The file is
 /// written beside its destination under a temporary name and renamed into place,
 /// so a failure never leaves a truncated file or harms an existing one.
-pub fn write_image(image: &Image, path: &Path) -> Result<(), GpuError> {
+pub fn write_image(image: &Image, path: &Path, bits: PngBits) -> Result<(), GpuError> {
+    let format = Format::from_path(path)?;
     let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
-    let format = image::ImageFormat::from_path(path).map_err(|e| fail(&e))?;
-    if format != image::ImageFormat::Png {
-        return Err(fail(&"unsupported output format: use .png"));
-    }
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -49,13 +111,76 @@ pub fn write_image(image: &Image, path: &Path) -> Result<(), GpuError> {
     // Temporary files are private by default; the image gets ordinary permissions.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let mut tmp = builder
-        .tempfile_in(dir)
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| fail(&e))?;
+    {
+        let mut writer = std::io::BufWriter::new(tmp.as_file_mut());
+        match (format, bits) {
+            (Format::Png, PngBits::Eight) => image.to_rgb8().write_to(&mut writer, image::ImageFormat::Png),
+            (Format::Png, PngBits::Sixteen) => image.to_rgb16().write_to(&mut writer, image::ImageFormat::Png),
+            (Format::Exr, _) => image.to_rgb32f().write_to(&mut writer, image::ImageFormat::OpenExr),
+            (Format::Pfm, _) => write_pfm(image, &mut writer).map_err(image::ImageError::IoError),
+        }
         .map_err(|e| fail(&e))?;
-    let mut writer = std::io::BufWriter::new(tmp.as_file_mut());
-    image.to_rgb8().write_to(&mut writer, format).map_err(|e| fail(&e))?;
-    std::io::Write::flush(&mut writer).map_err(|e| fail(&e))?;
-    drop(writer);
+        writer.flush().map_err(|e| fail(&e))?;
+    }
+    tmp.as_file().sync_all().map_err(|e| fail(&e))?;
     tmp.persist(path).map_err(|e| fail(&e.error))?;
     Ok(())
+}
+
+/// PFM: a text header, then little-endian floats, rows from the bottom up.
+fn write_pfm(image: &Image, w: &mut impl Write) -> std::io::Result<()> {
+    write!(w, "PF\n{} {}\n-1.0\n", image.width, image.height)?;
+    for y in (0..image.height).rev() {
+        for x in 0..image.width {
+            for c in image.linear_at(x, y) {
+                w.write_all(&c.to_le_bytes())?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Reads a colour PFM written by `write_pfm` (or any little- or big-endian `PF`
+/// file): (width, height, rgb rows top first).
+pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
+    let mut fields = Vec::new();
+    let mut pos = 0;
+    while fields.len() < 4 {
+        while pos < bytes.len() && bytes[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        let start = pos;
+        while pos < bytes.len() && !bytes[pos].is_ascii_whitespace() {
+            pos += 1;
+        }
+        if start == pos {
+            return Err("truncated PFM header".into());
+        }
+        fields.push(std::str::from_utf8(&bytes[start..pos]).map_err(|e| e.to_string())?.to_string());
+    }
+    pos += 1; // the single whitespace byte after the scale
+    if fields[0] != "PF" {
+        return Err(format!("not a colour PFM: {}", fields[0]));
+    }
+    let width: u32 = fields[1].parse().map_err(|_| "bad PFM width")?;
+    let height: u32 = fields[2].parse().map_err(|_| "bad PFM height")?;
+    let little = fields[3].parse::<f32>().map_err(|_| "bad PFM scale")? < 0.0;
+    let count = width as usize * height as usize * 3;
+    let data = bytes.get(pos..pos + count * 4).ok_or("truncated PFM data")?;
+    let floats: Vec<f32> = data
+        .chunks_exact(4)
+        .map(|b| {
+            let b = [b[0], b[1], b[2], b[3]];
+            if little { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+        })
+        .collect();
+    let mut rows = Vec::with_capacity(count / 3);
+    for y in (0..height as usize).rev() {
+        for x in 0..width as usize {
+            let i = (y * width as usize + x) * 3;
+            rows.push([floats[i], floats[i + 1], floats[i + 2]]);
+        }
+    }
+    Ok((width, height, rows))
 }

@@ -1,15 +1,17 @@
 //! The render pipeline on the device: upload → dispatch tiles → resolve → read back.
 
 use bytemuck::{Pod, Zeroable};
-use glint_scene::gpu_types::{Globals, GpuScene};
+use std::time::{Duration, Instant};
+
+use glint_scene::gpu_types::{Filter, Globals, GpuScene, View};
 use wgpu::util::DeviceExt;
 
 use crate::shaders::{ShaderSource, RESOLVE_FILES, TRACE_FILES};
 use crate::{GpuError, Image};
 
-/// Side of the square tile one dispatch covers, in pixels; bounds the work per
-/// dispatch so no single submission runs long enough to trip a GPU watchdog.
-pub const TILE: u32 = 128;
+/// Work per dispatch is kept near this, so no single submission runs long enough
+/// to trip a GPU watchdog (and progress is reported often).
+const DISPATCH_TARGET: Duration = Duration::from_millis(150);
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -22,10 +24,33 @@ pub enum ToneMap {
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderOptions {
-    pub width: u32,
-    pub height: u32,
+    pub view: View,
+    /// Samples per pixel; 1 traces each pixel centre.
+    pub spp: u32,
+    pub seed: u32,
+    pub filter: Filter,
     pub exposure: f32,
     pub tone_map: ToneMap,
+    /// What maps a data view to [0, 1]: the far distance of the depth view, the
+    /// node count shown hottest in the heat map.
+    pub view_scale: f32,
+    /// Rows per dispatch; `None` adapts the band height to the time a dispatch takes.
+    pub band_rows: Option<u32>,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self {
+            view: View::Shaded,
+            spp: 1,
+            seed: 0,
+            filter: Filter::Box,
+            exposure: 1.0,
+            tone_map: ToneMap::Clamp,
+            view_scale: 1.0,
+            band_rows: None,
+        }
+    }
 }
 
 /// Rays traced, by kind.
@@ -43,12 +68,25 @@ impl RayStats {
         self.eye_hit + self.eye_miss + self.shadow + self.reflect + self.refract
     }
 
-    fn add(&mut self, counts: &[u32]) {
+    fn add_counts(&mut self, counts: &[u32]) {
         self.eye_hit += u64::from(counts[0]);
         self.eye_miss += u64::from(counts[1]);
         self.shadow += u64::from(counts[2]);
         self.reflect += u64::from(counts[3]);
         self.refract += u64::from(counts[4]);
+    }
+}
+
+impl std::ops::Add for RayStats {
+    type Output = RayStats;
+    fn add(self, o: RayStats) -> RayStats {
+        RayStats {
+            eye_hit: self.eye_hit + o.eye_hit,
+            eye_miss: self.eye_miss + o.eye_miss,
+            shadow: self.shadow + o.shadow,
+            reflect: self.reflect + o.reflect,
+            refract: self.refract + o.refract,
+        }
     }
 }
 
@@ -60,7 +98,9 @@ struct ResolveParams {
     pixel_count: u32,
     tone_map: u32,
     exposure: f32,
-    _pad: u32,
+    view: u32,
+    scale: f32,
+    _pad: [u32; 3],
 }
 
 /// The compiled kernels on one device. Cheap to clone the device and queue
@@ -166,42 +206,63 @@ impl Renderer {
         Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, trace_bind, scene_bytes })
     }
 
-    /// Renders one sample per pixel, tile by tile, calling `progress(done, total)`
-    /// after each tile, then resolves and reads the image back.
+    /// Renders `options.spp` samples per pixel and resolves them, calling
+    /// `progress(done, total)` (in rows) after each dispatch.
     pub fn render(
         &self,
         scene: &SceneBuffers,
         options: &RenderOptions,
-        progress: &mut dyn FnMut(u32, u32),
+        progress: &mut dyn FnMut(u64, u64),
     ) -> Result<(Image, RayStats), GpuError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let result = self.render_unscoped(scene, options, progress);
+        let result = (|| {
+            self.clear(scene);
+            let mut stats = RayStats::default();
+            let total = u64::from(options.spp) * u64::from(scene.height);
+            for sample in 0..options.spp {
+                let done = u64::from(sample) * u64::from(scene.height);
+                stats = stats + self.trace_sample(scene, sample, options, &mut |rows| progress(done + rows, total))?;
+            }
+            Ok((self.resolve(scene, options)?, stats))
+        })();
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Runtime(e.to_string()));
         }
         result
     }
 
-    fn render_unscoped(
-        &self,
-        scene: &SceneBuffers,
-        options: &RenderOptions,
-        progress: &mut dyn FnMut(u32, u32),
-    ) -> Result<(Image, RayStats), GpuError> {
-        let (width, height) = (scene.width, scene.height);
-        let stats_readback = self.readback_buffer(STAT_COUNT * 4);
-        let mut stats = RayStats::default();
-
+    /// Empties the accumulation buffer (a progressive render starts over).
+    pub fn clear(&self, scene: &SceneBuffers) {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         encoder.clear_buffer(&scene.accum, 0, None);
         self.queue.submit([encoder.finish()]);
+    }
 
-        let tiles_x = width.div_ceil(TILE);
-        let tiles_y = height.div_ceil(TILE);
-        let total = tiles_x * tiles_y;
-        for tile in 0..total {
-            let origin = [(tile % tiles_x) * TILE, (tile / tiles_x) * TILE];
-            let globals = Globals { tile_origin: origin, ..scene.globals };
+    /// Adds sample `sample_index` to every pixel, in bands of rows, calling
+    /// `progress(rows done)` after each band.
+    pub fn trace_sample(
+        &self,
+        scene: &SceneBuffers,
+        sample_index: u32,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u64),
+    ) -> Result<RayStats, GpuError> {
+        let (width, height) = (scene.width, scene.height);
+        let stats_readback = self.readback_buffer(STAT_COUNT * 4);
+        let mut stats = RayStats::default();
+        let mut rows = options.band_rows.unwrap_or(8).clamp(1, height);
+        let mut y = 0;
+        while y < height {
+            let band = rows.min(height - y);
+            let globals = Globals {
+                tile_origin: [0, y],
+                sample_index,
+                seed: options.seed,
+                sample_count: if options.view.is_primary_only() { 1 } else { options.spp },
+                pixel_filter: options.filter as u32,
+                view: options.view as u32,
+                ..scene.globals
+            };
             self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
             let mut encoder = self.device.create_command_encoder(&Default::default());
             encoder.clear_buffer(&scene.stats, 0, None);
@@ -209,31 +270,34 @@ impl Renderer {
                 let mut pass = encoder.begin_compute_pass(&Default::default());
                 pass.set_pipeline(&self.trace);
                 pass.set_bind_group(0, &scene.trace_bind, &[]);
-                let w = TILE.min(width - origin[0]);
-                let h = TILE.min(height - origin[1]);
-                pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+                pass.dispatch_workgroups(width.div_ceil(8), band.div_ceil(8), 1);
             }
             encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_COUNT * 4);
+            let start = Instant::now();
             self.queue.submit([encoder.finish()]);
             let counts: Vec<u32> = bytemuck::cast_slice(&self.read(&stats_readback)?).to_vec();
-            stats.add(&counts);
-            progress(tile + 1, total);
+            stats.add_counts(&counts);
+            y += band;
+            progress(u64::from(y));
+            if options.band_rows.is_none() {
+                rows = next_band_rows(rows, start.elapsed());
+            }
         }
-
-        let image = self.resolve(scene, options)?;
-        Ok((image, stats))
+        Ok(stats)
     }
 
     /// Turns the accumulated samples into display values (tone mapped, sRGB) and
     /// reads both back.
-    fn resolve(&self, scene: &SceneBuffers, options: &RenderOptions) -> Result<Image, GpuError> {
+    pub fn resolve(&self, scene: &SceneBuffers, options: &RenderOptions) -> Result<Image, GpuError> {
         let pixels = scene.width * scene.height;
         let bytes = u64::from(pixels) * 16;
         let params = ResolveParams {
             pixel_count: pixels,
             tone_map: options.tone_map as u32,
             exposure: options.exposure,
-            _pad: 0,
+            view: options.view as u32,
+            scale: options.view_scale,
+            _pad: [0; 3],
         };
         let params_buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("resolve params"),
@@ -269,11 +333,13 @@ impl Renderer {
         self.queue.submit([encoder.finish()]);
         let display: Vec<[f32; 4]> = bytemuck::cast_slice(&self.read(&display_readback)?).to_vec();
         let accum: Vec<[f32; 4]> = bytemuck::cast_slice(&self.read(&accum_readback)?).to_vec();
+        // Radiance is scaled by the exposure; data views keep their values.
+        let exposure = if options.view.is_primary_only() { 1.0 } else { options.exposure };
         let linear = accum
             .iter()
             .map(|s| {
                 let n = s[3].max(1.0);
-                [s[0] / n * options.exposure, s[1] / n * options.exposure, s[2] / n * options.exposure, 1.0]
+                [s[0] / n * exposure, s[1] / n * exposure, s[2] / n * exposure, 1.0]
             })
             .collect();
         Ok(Image { width: scene.width, height: scene.height, display, linear })
@@ -303,6 +369,18 @@ impl Renderer {
         let bytes = buffer.get_mapped_range(..).map_err(|e| GpuError::Runtime(e.to_string()))?.to_vec();
         buffer.unmap();
         Ok(bytes)
+    }
+}
+
+/// The next band height (a multiple of 8 rows) given how long the last took,
+/// steering each dispatch towards `DISPATCH_TARGET`.
+fn next_band_rows(rows: u32, took: Duration) -> u32 {
+    if took < DISPATCH_TARGET / 3 {
+        rows.saturating_mul(2).min(4096)
+    } else if took > DISPATCH_TARGET * 2 {
+        (rows / 2).max(8) / 8 * 8
+    } else {
+        rows
     }
 }
 

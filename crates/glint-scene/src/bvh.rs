@@ -103,7 +103,8 @@ impl Bvh {
             .enumerate()
             .map(|(i, &(min, max))| Item { bounds: Aabb { min, max }, index: i as u32 })
             .collect();
-        let tree = Subtree::build(&mut items, 0, 0);
+        let extent = Extent::of(&items);
+        let tree = Subtree::build(&mut items, 0, 0, &extent);
         let mut nodes = vec![Node::zeroed(); tree.len()];
         let (root, rest) = nodes.split_first_mut().expect("a tree has a root");
         tree.place(root, rest, 1);
@@ -187,54 +188,75 @@ impl Item {
     }
 }
 
-/// Bounds of the items and of their centroids, in one pass.
-fn extents(items: &[Item]) -> (Aabb, Aabb) {
-    use rayon::prelude::*;
-    let serial = |items: &[Item]| {
-        items.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(mut b, mut c), item| {
-            b.grow(&item.bounds);
-            c.grow_point(item.centroid());
-            (b, c)
-        })
-    };
-    if items.len() <= PARALLEL_MIN {
-        return serial(items);
+/// What the builder knows of a node's items before splitting it: their bounds
+/// (the node's box) and their centroids' bounds (the binning range).
+#[derive(Debug, Clone, Copy)]
+struct Extent {
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+impl Extent {
+    const EMPTY: Self = Self { bounds: Aabb::EMPTY, centroids: Aabb::EMPTY };
+
+    fn add(&mut self, item: &Item) {
+        self.bounds.grow(&item.bounds);
+        self.centroids.grow_point(item.centroid());
     }
-    items.par_chunks(PARALLEL_MIN).map(serial).reduce(
-        || (Aabb::EMPTY, Aabb::EMPTY),
-        |(mut b, mut c), (b2, c2)| {
-            b.grow(&b2);
-            c.grow(&c2);
-            (b, c)
-        },
-    )
+
+    fn merge(mut self, other: Self) -> Self {
+        self.bounds.grow(&other.bounds);
+        self.centroids.grow(&other.centroids);
+        self
+    }
+
+    fn of(items: &[Item]) -> Self {
+        use rayon::prelude::*;
+        let serial = |items: &[Item]| {
+            items.iter().fold(Self::EMPTY, |mut e, item| {
+                e.add(item);
+                e
+            })
+        };
+        if items.len() <= PARALLEL_MIN {
+            return serial(items);
+        }
+        items.par_chunks(PARALLEL_MIN).map(serial).reduce(|| Self::EMPTY, Self::merge)
+    }
 }
 
 #[derive(Debug, Clone, Copy)]
 struct Bin {
     bounds: Aabb,
-    count: usize,
+    count: u32,
 }
 
 type Bins = [[Bin; BINS]; 3];
 
-/// Maps centroids to bins per axis. An axis with no centroid extent gets scale 0:
-/// everything lands in bin 0 and the axis offers no split.
+/// Maps centroids to bins per axis. An axis without centroid extent gets scale 0
+/// and offers no split, so it is skipped.
 struct Binning {
     origin: Vec3,
     scale: Vec3,
+    /// Bins in use: as many as primitives in small nodes, whose sweeps would
+    /// otherwise cost more than the binning.
+    count: usize,
+    axes: [bool; 3],
 }
 
 impl Binning {
-    fn new(centroids: &Aabb) -> Self {
+    fn new(centroids: &Aabb, n: usize) -> Self {
+        let count = n.min(BINS);
         let extent = centroids.max - centroids.min;
-        let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), BINS as f32 / extent, Vec3::ZERO);
-        Self { origin: centroids.min, scale: Vec3::select(scale.is_finite_mask(), scale, Vec3::ZERO) }
+        let scale = count as f32 / extent;
+        let usable = extent.cmpgt(Vec3::ZERO) & scale.is_finite_mask();
+        let scale = Vec3::select(usable, scale, Vec3::ZERO);
+        Self { origin: centroids.min, scale, count, axes: usable.into() }
     }
 
-    /// Bin of a centroid on each axis; the float-to-int cast saturates (NaN to 0).
-    fn bins(&self, c: Vec3) -> [usize; 3] {
-        ((c - self.origin) * self.scale).to_array().map(|x| (x as usize).min(BINS - 1))
+    /// Bin of a centroid on `axis`; the float-to-int cast saturates (NaN to 0).
+    fn bin_of(&self, c: Vec3, axis: usize) -> usize {
+        (((c[axis] - self.origin[axis]) * self.scale[axis]) as usize).min(self.count - 1)
     }
 
     fn bin(&self, items: &[Item]) -> Bins {
@@ -242,9 +264,11 @@ impl Binning {
         let serial = |items: &[Item]| {
             let mut bins = [[Bin { bounds: Aabb::EMPTY, count: 0 }; BINS]; 3];
             for item in items {
-                for (axis, b) in self.bins(item.centroid()).into_iter().enumerate() {
-                    bins[axis][b].bounds.grow(&item.bounds);
-                    bins[axis][b].count += 1;
+                let c = item.centroid();
+                for axis in (0..3).filter(|&a| self.axes[a]) {
+                    let bin = &mut bins[axis][self.bin_of(c, axis)];
+                    bin.bounds.grow(&item.bounds);
+                    bin.count += 1;
                 }
             }
             bins
@@ -252,14 +276,53 @@ impl Binning {
         if items.len() <= PARALLEL_MIN {
             return serial(items);
         }
-        items.par_chunks(PARALLEL_MIN).map(serial).reduce_with(|mut a, b| {
-            for (a, b) in a.iter_mut().flatten().zip(b.iter().flatten()) {
-                a.bounds.grow(&b.bounds);
-                a.count += b.count;
+        items
+            .par_chunks(PARALLEL_MIN)
+            .map(serial)
+            .reduce_with(|mut a, b| {
+                for (a, b) in a.iter_mut().flatten().zip(b.iter().flatten()) {
+                    a.bounds.grow(&b.bounds);
+                    a.count += b.count;
+                }
+                a
+            })
+            .expect("a node has items")
+    }
+
+    /// The cheapest split between non-empty children over all axes, if any.
+    fn best_split(&self, bins: &Bins) -> Option<SahSplit> {
+        let mut best: Option<SahSplit> = None;
+        for axis in (0..3).filter(|&a| self.axes[a]) {
+            let bins = &bins[axis][..self.count];
+            // Left sweep: area and count of bins ..=i.
+            let mut left_area = [0.0; BINS];
+            let mut left_count = [0; BINS];
+            let mut acc = Aabb::EMPTY;
+            let mut count = 0;
+            for (i, bin) in bins[..bins.len() - 1].iter().enumerate() {
+                acc.grow(&bin.bounds);
+                count += bin.count as usize;
+                left_area[i] = acc.half_area();
+                left_count[i] = count;
             }
-            a
-        })
-        .expect("a node has items")
+            // Right sweep, evaluating each boundary with both sides known.
+            let mut acc = Aabb::EMPTY;
+            let mut right = 0;
+            for last in (0..bins.len() - 1).rev() {
+                acc.grow(&bins[last + 1].bounds);
+                right += bins[last + 1].count as usize;
+                let left = left_count[last];
+                if left == 0 || right == 0 {
+                    continue;
+                }
+                let cost = left_area[last] * left as f32 + acc.half_area() * right as f32;
+                let imbalance = left.abs_diff(right);
+                if best.is_none_or(|b| cost < b.cost || (cost == b.cost && imbalance < b.imbalance)) {
+                    best = Some(SahSplit { axis, last, left, cost, imbalance });
+                }
+            }
+        }
+        best
     }
 }
 
@@ -276,119 +339,86 @@ struct SahSplit {
     imbalance: usize,
 }
 
-/// The cheapest split between non-empty children over all axes, if any.
-fn best_split(bins: &Bins, n: usize) -> Option<SahSplit> {
-    let mut best: Option<SahSplit> = None;
-    for (axis, bins) in bins.iter().enumerate() {
-        // Left sweep: area and count of bins ..=i.
-        let mut left_area = [0.0; BINS];
-        let mut left_count = [0; BINS];
-        let mut acc = Aabb::EMPTY;
-        let mut count = 0;
-        for i in 0..BINS - 1 {
-            acc.grow(&bins[i].bounds);
-            count += bins[i].count;
-            left_area[i] = acc.half_area();
-            left_count[i] = count;
-        }
-        // Right sweep, evaluating each boundary with both sides known.
-        let mut acc = Aabb::EMPTY;
-        let mut right = 0;
-        for last in (0..BINS - 1).rev() {
-            acc.grow(&bins[last + 1].bounds);
-            right += bins[last + 1].count;
-            let left = left_count[last];
-            if left == 0 || right == 0 {
-                continue;
-            }
-            let cost = left_area[last] * left as f32 + acc.half_area() * right as f32;
-            let imbalance = left.abs_diff(right);
-            if best.is_none_or(|b| cost < b.cost || (cost == b.cost && imbalance < b.imbalance)) {
-                best = Some(SahSplit { axis, last, left, cost, imbalance });
-            }
-        }
-        debug_assert!(count + bins[BINS - 1].count == n);
-    }
-    best
-}
-
 /// How many primitives median splits fit into `levels` more levels of leaves of
 /// at most `MAX_LEAF`.
 fn capacity(levels: usize) -> u64 {
     (MAX_LEAF as u64) << levels
 }
 
-/// Moves the items matching `left` to the front; returns how many there are.
-fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> usize {
+/// Moves the items matching `left` to the front and returns how many there are,
+/// with both sides' extents gathered on the way (saving the children a pass).
+fn partition(items: &mut [Item], left: impl Fn(&Item) -> bool) -> (usize, Extent, Extent) {
+    let (mut l, mut r) = (Extent::EMPTY, Extent::EMPTY);
     let (mut i, mut j) = (0, items.len());
     loop {
         while i < j && left(&items[i]) {
+            l.add(&items[i]);
             i += 1;
         }
         while i < j && !left(&items[j - 1]) {
+            r.add(&items[j - 1]);
             j -= 1;
         }
         if i == j {
-            return i;
+            return (i, l, r);
         }
         items.swap(i, j - 1);
+        l.add(&items[i]);
+        r.add(&items[j - 1]);
         i += 1;
         j -= 1;
     }
 }
 
-/// Bounds of a node at `depth` over `items`, and where its items split (after
-/// reordering them), or `None` for a leaf.
+/// The split of a node at `depth` over `items` with extent `extent` (reordering
+/// the items): where it splits and the children's extents, or `None` for a leaf.
 ///
 /// Invariant: `items.len() <= capacity(MAX_DEPTH - depth)`, which holds at the root
 /// and which every split passes on to both children.
-fn split_node(items: &mut [Item], depth: usize) -> (Aabb, Option<usize>) {
+fn split_node(items: &mut [Item], depth: usize, extent: &Extent) -> Option<(usize, Extent, Extent)> {
     let n = items.len();
     let remaining = MAX_DEPTH - depth;
     debug_assert!(n as u64 <= capacity(remaining));
-    let (bounds, centroids) = extents(items);
     if n == 1 || remaining == 0 {
-        return (bounds, None);
+        return None;
     }
-    let binning = Binning::new(&centroids);
-    let sah = best_split(&binning.bin(items), n);
-    let area = bounds.half_area();
+    let binning = Binning::new(&extent.centroids, n);
+    let sah = binning.best_split(&binning.bin(items));
+    let area = extent.bounds.half_area();
     let worth_it = sah.is_some_and(|s| C_TRAV * area + C_ISECT * s.cost < C_ISECT * n as f32 * area);
     if n <= MAX_LEAF && !worth_it {
-        return (bounds, None);
+        return None;
     }
-    let mid = match sah {
+    match sah {
         Some(s) if s.left.max(n - s.left) as u64 <= capacity(remaining - 1) => {
-            let mid = partition(items, |item| binning.bins(item.centroid())[s.axis] <= s.last);
-            debug_assert_eq!(mid, s.left);
-            mid
+            let split = partition(items, |item| binning.bin_of(item.centroid(), s.axis) <= s.last);
+            debug_assert_eq!(split.0, s.left);
+            Some(split)
         }
         // No SAH split, or one that would leave a child too deep: the object median
         // along the widest centroid axis halves the count, which always fits.
         _ => {
-            let axis = (centroids.max - centroids.min).max_position();
+            let axis = (extent.centroids.max - extent.centroids.min).max_position();
             let mid = n / 2;
             items.select_nth_unstable_by(mid, |a, b| a.centroid()[axis].total_cmp(&b.centroid()[axis]));
-            mid
+            Some((mid, Extent::of(&items[..mid]), Extent::of(&items[mid..])))
         }
-    };
-    (bounds, Some(mid))
+    }
 }
 
 /// Builds serially into `nodes`, children appended depth-first after their parent.
 /// Leaves index the global item array, which `items` starts at `first`.
-fn build_serial(items: &mut [Item], first: u32, depth: usize, nodes: &mut Vec<Node>, slot: usize) {
-    let (bounds, split) = split_node(items, depth);
-    let Some(mid) = split else {
-        nodes[slot] = Node::leaf(bounds, first, items.len());
+fn build_serial(items: &mut [Item], first: u32, depth: usize, extent: &Extent, nodes: &mut Vec<Node>, slot: usize) {
+    let Some((mid, left_extent, right_extent)) = split_node(items, depth, extent) else {
+        nodes[slot] = Node::leaf(extent.bounds, first, items.len());
         return;
     };
     let child = nodes.len();
-    nodes[slot] = Node::interior(bounds, child as u32);
+    nodes[slot] = Node::interior(extent.bounds, child as u32);
     nodes.extend([Node::zeroed(); 2]);
     let (left, right) = items.split_at_mut(mid);
-    build_serial(left, first, depth + 1, nodes, child);
-    build_serial(right, first + mid as u32, depth + 1, nodes, child + 1);
+    build_serial(left, first, depth + 1, &left_extent, nodes, child);
+    build_serial(right, first + mid as u32, depth + 1, &right_extent, nodes, child + 1);
 }
 
 /// The result of the parallel build before flattening: the top levels as boxed
@@ -400,24 +430,23 @@ enum Subtree {
 }
 
 impl Subtree {
-    fn build(items: &mut [Item], first: u32, depth: usize) -> Self {
+    fn build(items: &mut [Item], first: u32, depth: usize, extent: &Extent) -> Self {
         if items.len() <= PARALLEL_MIN {
             let mut nodes = Vec::with_capacity(2 * items.len() - 1);
             nodes.push(Node::zeroed());
-            build_serial(items, first, depth, &mut nodes, 0);
+            build_serial(items, first, depth, extent, &mut nodes, 0);
             return Self::Chunk(nodes);
         }
-        let (bounds, split) = split_node(items, depth);
-        let Some(mid) = split else {
-            return Self::Chunk(vec![Node::leaf(bounds, first, items.len())]);
+        let Some((mid, left_extent, right_extent)) = split_node(items, depth, extent) else {
+            return Self::Chunk(vec![Node::leaf(extent.bounds, first, items.len())]);
         };
         let (left, right) = items.split_at_mut(mid);
         let (left, right) = rayon::join(
-            || Self::build(left, first, depth + 1),
-            || Self::build(right, first + mid as u32, depth + 1),
+            || Self::build(left, first, depth + 1, &left_extent),
+            || Self::build(right, first + mid as u32, depth + 1, &right_extent),
         );
         let len = 1 + left.len() + right.len();
-        Self::Split { bounds, left: Box::new(left), right: Box::new(right), len }
+        Self::Split { bounds: extent.bounds, left: Box::new(left), right: Box::new(right), len }
     }
 
     fn len(&self) -> usize {
@@ -753,27 +782,41 @@ mod tests {
         assert!(hits > 1000, "only {hits} rays hit: the test would prove little");
     }
 
+    /// Process CPU time (user + system), which unlike wall time does not count
+    /// waiting for other processes on a busy machine. Linux only.
+    fn cpu_seconds() -> f64 {
+        let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
+        let fields: Vec<&str> = stat.rsplit(')').next().unwrap().split_whitespace().collect();
+        let ticks: f64 = fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap();
+        ticks / 100.0
+    }
+
     /// `cargo test --release -p glint-scene bvh_throughput -- --ignored --nocapture`
     #[test]
     #[ignore = "benchmark"]
     fn bvh_throughput() {
         let n = 1_000_000;
+        let runs = 5;
         let bounds = random_boxes(9, n);
         Bvh::build(&bounds[..100_000]); // warm up the thread pool
         let mut times = Vec::new();
-        for _ in 0..5 {
+        let cpu = cpu_seconds();
+        for _ in 0..runs {
             let start = std::time::Instant::now();
-            let bvh = Bvh::build(&bounds);
+            std::hint::black_box(Bvh::build(&bounds));
             times.push(start.elapsed().as_secs_f64());
-            std::hint::black_box(&bvh);
         }
+        let cpu = (cpu_seconds() - cpu) / runs as f64;
         let bvh = Bvh::build(&bounds);
         let best = times.iter().copied().fold(f64::INFINITY, f64::min);
         println!(
-            "{n} boxes: best {:.1} ms ({:.2} M prims/s), runs {:?} ms; {} nodes, depth {}, SAH {:.1} (median split {:.1})",
+            "{n} boxes, {} threads: best {:.0} ms wall ({:.2} M prims/s), runs {:?} ms; {:.0} ms CPU per build; \
+             {} nodes, depth {}, SAH {:.1} (median split {:.1})",
+            rayon::current_num_threads(),
             best * 1e3,
             n as f64 / best / 1e6,
             times.iter().map(|t| (t * 1e3).round()).collect::<Vec<_>>(),
+            cpu * 1e3,
             bvh.nodes.len(),
             bvh.depth(),
             bvh.sah_cost(),

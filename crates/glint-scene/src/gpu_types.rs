@@ -33,13 +33,47 @@ pub const FLAG_REFLECTIONS: u32 = 4;
 pub const FLAG_REFRACTIONS: u32 = 8;
 pub const FLAG_DEPTH_CUE: u32 = 16;
 
-/// Which image the trace kernel writes.
+/// What the trace kernel writes per pixel; mirrored by the VIEW_ constants in
+/// shaders/types.wgsl.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[repr(u32)]
 pub enum View {
     /// The full Whitted render.
     #[default]
     Shaded = 0,
+    /// Unit geometric normal turned towards the viewer; 0 on a miss.
+    Normal = 1,
+    /// Distance along the unit primary ray; `MISS_DEPTH` on a miss.
+    Depth = 2,
+    /// The diffuse colour O_d of the material hit; 0 on a miss.
+    Albedo = 3,
+    /// Direct diffuse light only: Σ k_d·O_d·I_l·max(0, N·L)·V/d².
+    Diffuse = 4,
+    /// Object index; −1 on a miss.
+    Id = 5,
+    /// BVH nodes visited by the primary ray.
+    Heatmap = 6,
+}
+
+impl View {
+    /// Views computed from the primary ray alone, through the pixel centre.
+    pub fn is_primary_only(self) -> bool {
+        self != View::Shaded
+    }
+}
+
+/// The depth the kernel reports for a ray that hits nothing (WGSL's MISS).
+pub const MISS_DEPTH: f32 = 3.4e38;
+
+/// How samples are spread over and around their pixel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[repr(u32)]
+pub enum Filter {
+    /// Uniform within the pixel.
+    #[default]
+    Box = 0,
+    /// Tent-distributed over two pixels' width around the centre.
+    Tent = 1,
 }
 
 #[repr(C)]
@@ -78,6 +112,11 @@ pub struct Globals {
     pub tile_origin: [u32; 2],
     pub sample_index: u32,
     pub seed: u32,
+    /// Samples per pixel of the render (1: the pixel centre; 0: open-ended).
+    pub sample_count: u32,
+    pub pixel_filter: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
 }
 
 #[repr(C)]
@@ -318,5 +357,9 @@ pub fn globals(scene: &Scene, width: u32, height: u32, light_count: u32) -> Glob
         tile_origin: [0, 0],
         sample_index: 0,
         seed: 0,
+        sample_count: 1,
+        pixel_filter: Filter::Box as u32,
+        _pad0: 0,
+        _pad1: 0,
     }
 }

@@ -4,18 +4,38 @@
 //! would buffer the input and lose positions), numbers go through newtypes that
 //! reject NaN and infinity while the parser still knows where they are, and
 //! checks that need the whole table report the table's own line.
+//!
+//! Two kinds of entries bring in other files, named relative to the scene file:
+//!
+//! * an object of `type = "mesh"` with `path = "model.obj"` places an OBJ mesh
+//!   (its MTL materials, unless `material = "name"` overrides them all) with an
+//!   optional transform: `scale = s` or `[sx, sy, sz]`, `rotate = [rx, ry, rz]`
+//!   (degrees, about X, then Y, then Z), `translate = [x, y, z]`, applied in that
+//!   order; or instead `matrix = [[..4..], [..], [..], [..]]`, a row-major affine
+//!   4×4 matrix (last row `[0, 0, 0, 1]`) acting on column vectors. Normals
+//!   transform by the inverse transpose. An OBJ named by several objects is read
+//!   once and copied, transformed, into each; each OBJ part becomes one object.
+//! * `[[include]]` with `path = "part.nff"` merges an NFF file's objects, lights
+//!   and materials (after the TOML file's own objects, in include order); its
+//!   `v` block (optional in an included file) and background are ignored, the
+//!   TOML file's camera and image apply. Its lights keep their NFF intensity
+//!   1/√n, n counting the lights of that NFF file.
+//!
+//! An error in the reference (a missing file, a bad transform) names the TOML
+//! line; an error inside the OBJ, MTL or NFF file names that file.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use glam::Vec3;
+use glam::{DMat3, DMat4, DVec3, Vec3};
 use serde::de::{self, Deserializer, Visitor};
 use serde::Deserialize;
 use toml::Spanned;
 
 use crate::scene::MAX_DEPTH_LIMIT;
 use crate::shape::{polygon_non_planarity, polygon_normal};
+use crate::{nff, obj};
 use crate::{
     Attenuation, Camera, DepthCue, Light, LightKind, LoadError, Location, Material, Object,
     Projection, RenderSettings, Scene, ShadowMode, Shape, SpecularModel,
@@ -62,6 +82,10 @@ struct Num(f32);
 #[derive(Debug, Clone, Copy)]
 struct V3(Vec3);
 
+/// A scale: one finite number for all axes, or three.
+#[derive(Debug, Clone, Copy)]
+struct Scale(Vec3);
+
 /// A colour: three finite non-negative numbers, or one number for a grey.
 #[derive(Debug, Clone, Copy)]
 struct Rgb(Vec3);
@@ -85,6 +109,36 @@ impl<'de> Deserialize<'de> for V3 {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let [x, y, z] = <[f64; 3]>::deserialize(d)?;
         Ok(V3(Vec3::new(finite(x)?, finite(y)?, finite(z)?)))
+    }
+}
+
+impl<'de> Deserialize<'de> for Scale {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct ScaleVisitor;
+        impl<'de> Visitor<'de> for ScaleVisitor {
+            type Value = Vec3;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a scale: a number or [sx, sy, sz]")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Vec3, E> {
+                Ok(Vec3::splat(finite(v)?))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Vec3, E> {
+                self.visit_f64(v as f64)
+            }
+            fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
+                let mut c = [0.0f32; 3];
+                for (i, slot) in c.iter_mut().enumerate() {
+                    let v: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                    *slot = finite(v)?;
+                }
+                if seq.next_element::<de::IgnoredAny>()?.is_some() {
+                    return Err(de::Error::invalid_length(4, &self));
+                }
+                Ok(Vec3::from(c))
+            }
+        }
+        d.deserialize_any(ScaleVisitor).map(Scale)
     }
 }
 
@@ -136,6 +190,14 @@ struct FileDef {
     material: BTreeMap<String, Spanned<MaterialDef>>,
     #[serde(default)]
     object: Vec<Spanned<ObjectDef>>,
+    #[serde(default)]
+    include: Vec<Spanned<IncludeDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IncludeDef {
+    path: Spanned<String>,
 }
 
 #[derive(Deserialize)]
@@ -231,6 +293,25 @@ struct ObjectDef {
     base_radius: Option<Spanned<Num>>,
     apex: Option<V3>,
     apex_radius: Option<Spanned<Num>>,
+    path: Option<Spanned<String>>,
+    translate: Option<V3>,
+    rotate: Option<V3>,
+    scale: Option<Spanned<Scale>>,
+    matrix: Option<Spanned<[[Num; 4]; 4]>>,
+}
+
+/// The OBJ files read so far, by canonical path.
+#[derive(Default)]
+struct Meshes {
+    cache: HashMap<PathBuf, CachedMesh>,
+    warnings: Vec<LoadError>,
+}
+
+struct CachedMesh {
+    mesh: obj::Mesh,
+    /// Where the mesh's MTL materials start in the scene's materials, once an
+    /// instance without a material override has added them.
+    material_offset: Option<usize>,
 }
 
 struct Builder<'a> {
@@ -264,7 +345,7 @@ impl Builder<'_> {
             Some(r) => self.render(r.get_ref())?,
         };
         let depth_cue = file.depth_cue.as_ref().map(|d| self.depth_cue(d)).transpose()?;
-        let lights = file.light.iter().map(|l| self.light(l)).collect::<Result<_, _>>()?;
+        let mut lights: Vec<Light> = file.light.iter().map(|l| self.light(l)).collect::<Result<_, _>>()?;
 
         let mut materials = vec![Material::default()];
         let mut names = BTreeMap::new();
@@ -272,13 +353,129 @@ impl Builder<'_> {
             names.insert(name.as_str(), materials.len());
             materials.push(self.material(name, def.get_ref())?);
         }
-        let objects = file
-            .object
-            .iter()
-            .map(|o| self.object(o, &names))
-            .collect::<Result<_, _>>()?;
+        let mut meshes = Meshes::default();
+        let mut objects = Vec::with_capacity(file.object.len());
+        for o in &file.object {
+            self.object(o, &names, &mut materials, &mut meshes, &mut objects)?;
+        }
+        let mut warnings = meshes.warnings;
+        for include in &file.include {
+            self.include(include, &mut materials, &mut objects, &mut lights, &mut warnings)?;
+        }
 
-        Ok(Scene { width, height, background, camera, ambient, lights, materials, objects, depth_cue, render, warnings: Vec::new() })
+        Ok(Scene { width, height, background, camera, ambient, lights, materials, objects, depth_cue, render, warnings })
+    }
+
+    /// A path written in the scene file, relative to the scene file.
+    fn relative(&self, path: &str) -> PathBuf {
+        self.path.parent().map_or_else(|| PathBuf::from(path), |dir| dir.join(path))
+    }
+
+    fn include(
+        &self,
+        include: &Spanned<IncludeDef>,
+        materials: &mut Vec<Material>,
+        objects: &mut Vec<Object>,
+        lights: &mut Vec<Light>,
+        warnings: &mut Vec<LoadError>,
+    ) -> Result<(), LoadError> {
+        let rel = &include.get_ref().path;
+        let path = self.relative(rel.get_ref());
+        if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nff")) {
+            return Err(self.error_at(rel, "path: only .nff files can be included (place an .obj with an object of type \"mesh\")"));
+        }
+        let source = std::fs::read_to_string(&path)
+            .map_err(|e| self.error_at(rel, format!("path: cannot read `{}`: {e}", path.display())))?;
+        let contents = nff::parse_contents(&source, &path, &nff::NffOptions::default())?;
+        let offset = materials.len();
+        materials.extend(contents.materials);
+        objects.extend(contents.objects.into_iter().map(|o| Object { material: o.material + offset, shapes: o.shapes }));
+        lights.extend(contents.lights);
+        warnings.extend(contents.warnings);
+        Ok(())
+    }
+
+    /// The transform of a mesh object: S, then R_x, R_y, R_z, then T; or `matrix`.
+    fn transform(&self, object: &Spanned<ObjectDef>) -> Result<DMat4, LoadError> {
+        let def = object.get_ref();
+        if let Some(m) = &def.matrix {
+            if def.translate.is_some() || def.rotate.is_some() || def.scale.is_some() {
+                return Err(self.error_at(m, "matrix: cannot be combined with translate, rotate or scale"));
+            }
+            let rows = m.get_ref().map(|row| row.map(|v| f64::from(v.0)));
+            // from_cols_array_2d reads each inner array as a column.
+            let matrix = DMat4::from_cols_array_2d(&rows).transpose();
+            if (matrix.row(3) - glam::DVec4::W).abs().max_element() > 1e-9 {
+                return Err(self.error_at(m, "matrix: the last row must be [0, 0, 0, 1] (an affine transform)"));
+            }
+            let linear = DMat3::from_mat4(matrix);
+            let size = linear.to_cols_array().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if linear.determinant().abs() <= 1e-12 * size.powi(3) {
+                return Err(self.error_at(m, "matrix: singular (it flattens the mesh)"));
+            }
+            return Ok(matrix);
+        }
+        let scale = match &def.scale {
+            None => DVec3::ONE,
+            Some(s) if s.get_ref().0.abs().min_element() > 0.0 => s.get_ref().0.as_dvec3(),
+            Some(s) => return Err(self.error_at(s, "scale: must not be zero")),
+        };
+        let r = def.rotate.map_or(DVec3::ZERO, |r| r.0.as_dvec3());
+        let t = def.translate.map_or(DVec3::ZERO, |t| t.0.as_dvec3());
+        Ok(DMat4::from_translation(t)
+            * DMat4::from_rotation_z(r.z.to_radians())
+            * DMat4::from_rotation_y(r.y.to_radians())
+            * DMat4::from_rotation_x(r.x.to_radians())
+            * DMat4::from_scale(scale))
+    }
+
+    fn mesh(
+        &self,
+        object: &Spanned<ObjectDef>,
+        material: Option<usize>,
+        materials: &mut Vec<Material>,
+        meshes: &mut Meshes,
+        objects: &mut Vec<Object>,
+    ) -> Result<(), LoadError> {
+        let def = object.get_ref();
+        let rel = def.path.as_ref().ok_or_else(|| self.error_at(object, "object: a mesh needs `path`"))?;
+        let transform = self.transform(object)?;
+        let path = self.relative(rel.get_ref());
+        let key = std::fs::canonicalize(&path)
+            .map_err(|e| self.error_at(rel, format!("path: cannot open `{}`: {e}", path.display())))?;
+        if !meshes.cache.contains_key(&key) {
+            let mesh = obj::load_mesh(&path)?;
+            meshes.warnings.extend(mesh.warnings.iter().cloned());
+            meshes.cache.insert(key.clone(), CachedMesh { mesh, material_offset: None });
+        }
+        let cached = meshes.cache.get_mut(&key).expect("just inserted");
+        let offset = match (material, cached.material_offset) {
+            (Some(_), _) => 0,
+            (None, Some(offset)) => offset,
+            (None, None) => {
+                let offset = materials.len();
+                materials.extend(cached.mesh.materials.iter().cloned());
+                cached.material_offset = Some(offset);
+                offset
+            }
+        };
+        let normal_matrix = DMat3::from_mat4(transform).inverse().transpose();
+        let point = |p: Vec3| transform.transform_point3(p.as_dvec3()).as_vec3();
+        let normal = |n: Vec3| (normal_matrix * n.as_dvec3()).normalize().as_vec3();
+        for part in &cached.mesh.parts {
+            let shapes = part
+                .triangles
+                .iter()
+                .map(|t| match t {
+                    Shape::Triangle { vertices, normals } => {
+                        Shape::Triangle { vertices: vertices.map(point), normals: normals.map(|n| n.map(normal)) }
+                    }
+                    other => unreachable!("meshes hold only triangles, found {other:?}"),
+                })
+                .collect();
+            objects.push(Object { material: material.unwrap_or(offset + part.material), shapes });
+        }
+        Ok(())
     }
 
     fn image(&self, image: &Spanned<ImageDef>) -> Result<(u32, u32, Vec3), LoadError> {
@@ -449,24 +646,35 @@ impl Builder<'_> {
         })
     }
 
-    fn object(&self, object: &Spanned<ObjectDef>, materials: &BTreeMap<&str, usize>) -> Result<Object, LoadError> {
+    fn object(
+        &self,
+        object: &Spanned<ObjectDef>,
+        names: &BTreeMap<&str, usize>,
+        materials: &mut Vec<Material>,
+        meshes: &mut Meshes,
+        objects: &mut Vec<Object>,
+    ) -> Result<(), LoadError> {
         let def = object.get_ref();
-        let material = match &def.material {
-            None => 0,
-            Some(m) => *materials
-                .get(m.get_ref().as_str())
-                .ok_or_else(|| self.error_at(m, format!("material: no material named `{}`", m.get_ref())))?,
+        let named = match &def.material {
+            None => None,
+            Some(m) => Some(
+                *names
+                    .get(m.get_ref().as_str())
+                    .ok_or_else(|| self.error_at(m, format!("material: no material named `{}`", m.get_ref())))?,
+            ),
         };
+        let material = named.unwrap_or(0);
         let kind = def.kind.get_ref().as_str();
         let allowed: &[&str] = match kind {
             "sphere" => &["center", "radius"],
             "triangle" => &["vertices", "normals"],
             "polygon" => &["vertices"],
             "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
+            "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
             other => {
                 return Err(self.error_at(
                     &def.kind,
-                    format!("type: unknown object type `{other}`, expected sphere, triangle, polygon, cone or cylinder"),
+                    format!("type: unknown object type `{other}`, expected sphere, triangle, polygon, cone, cylinder or mesh"),
                 ));
             }
         };
@@ -479,9 +687,17 @@ impl Builder<'_> {
             ("base_radius", def.base_radius.is_some()),
             ("apex", def.apex.is_some()),
             ("apex_radius", def.apex_radius.is_some()),
+            ("path", def.path.is_some()),
+            ("translate", def.translate.is_some()),
+            ("rotate", def.rotate.is_some()),
+            ("scale", def.scale.is_some()),
+            ("matrix", def.matrix.is_some()),
         ];
         if let Some((key, _)) = present.iter().find(|(k, p)| *p && !allowed.contains(k)) {
             return Err(self.error_at(object, format!("object: `{key}` does not apply to a {kind}")));
+        }
+        if kind == "mesh" {
+            return self.mesh(object, named, materials, meshes, objects);
         }
         let missing = |key: &str| self.error_at(object, format!("object: a {kind} needs `{key}`"));
         let positive = |v: &Option<Spanned<Num>>, key: &str| -> Result<f32, LoadError> {
@@ -540,7 +756,8 @@ impl Builder<'_> {
                 Shape::Cone { base, base_radius, apex, apex_radius }
             }
         };
-        Ok(Object { material, shapes: vec![shape] })
+        objects.push(Object { material, shapes: vec![shape] });
+        Ok(())
     }
 }
 
@@ -716,5 +933,182 @@ base_radius = 0.5
         assert!(e.starts_with("p.toml:3:"), "{e}");
         let src = MINIMAL.replace("width = 32", "width = 0");
         assert!(parse(&src, Path::new("p.toml")).is_err());
+    }
+
+    mod files {
+        use super::*;
+        use crate::obj::tests::{write, CUBE_MTL, CUBE_OBJ};
+
+        fn scene_file(dir: &Path, extra: &str) -> Result<Scene, LoadError> {
+            crate::load(&write(dir, "scene.toml", &format!("{MINIMAL}{extra}")))
+        }
+
+        fn bounds(shapes: &[Shape]) -> (Vec3, Vec3) {
+            shapes.iter().map(Shape::bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d))).unwrap()
+        }
+
+        fn close(a: Vec3, b: Vec3) -> bool {
+            (a - b).abs().max_element() < 1e-5
+        }
+
+        #[test]
+        fn mesh_instances_with_transforms() {
+            let dir = tempfile::tempdir().unwrap();
+            write(dir.path(), "cube.obj", CUBE_OBJ);
+            write(dir.path(), "cube.mtl", CUBE_MTL);
+            let s = scene_file(
+                dir.path(),
+                r#"
+[material.gold]
+color = [1, 0.8, 0.2]
+
+[[object]]
+type = "mesh"
+path = "cube.obj"
+scale = 2
+rotate = [0, 90, 0]
+translate = [10, 0, 0]
+
+[[object]]
+type = "mesh"
+path = "./cube.obj"
+material = "gold"
+matrix = [[1, 0, 0, 0], [0, 1, 0, 5], [0, 0, 1, 0], [0, 0, 0, 1]]
+
+[[object]]
+type = "mesh"
+path = "cube.obj"
+"#,
+            )
+            .unwrap();
+            assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+            // Each instance is three objects (one per material) of four triangles.
+            assert_eq!(s.objects.len(), 9);
+            assert_eq!(s.primitive_count(), 36);
+            // default, gold, then the MTL's three, added once.
+            let names: Vec<&str> = s.materials.iter().map(|m| m.name.as_str()).collect();
+            assert_eq!(names, ["default", "gold", "red", "green", "blue"]);
+            let ids: Vec<usize> = s.objects.iter().map(|o| o.material).collect();
+            assert_eq!(ids, [2, 3, 4, 1, 1, 1, 2, 3, 4]);
+
+            let first: Vec<Shape> = s.objects[..3].iter().flat_map(|o| o.shapes.clone()).collect();
+            let (lo, hi) = bounds(&first);
+            assert!(close(lo, Vec3::new(10.0, 0.0, -2.0)) && close(hi, Vec3::new(12.0, 2.0, 0.0)), "{lo} {hi}");
+            let second: Vec<Shape> = s.objects[3..6].iter().flat_map(|o| o.shapes.clone()).collect();
+            let (lo, hi) = bounds(&second);
+            assert!(close(lo, Vec3::new(0.0, 5.0, 0.0)) && close(hi, Vec3::new(1.0, 6.0, 1.0)), "{lo} {hi}");
+            let third: Vec<Shape> = s.objects[6..].iter().flat_map(|o| o.shapes.clone()).collect();
+            assert!(close(bounds(&third).1, Vec3::ONE));
+        }
+
+        #[test]
+        fn normals_use_the_inverse_transpose() {
+            let dir = tempfile::tempdir().unwrap();
+            // A triangle in the plane x + y = 1 with its true normal.
+            write(dir.path(), "slope.obj", "v 1 0 0\nv 0 1 0\nv 1 0 1\nvn 1 1 0\nf 1//1 2//1 3//1\n");
+            let s = scene_file(dir.path(), "[[object]]\ntype = \"mesh\"\npath = \"slope.obj\"\nscale = [2, 1, 1]\n").unwrap();
+            let Shape::Triangle { vertices, normals: Some(n) } = &s.objects[0].shapes[0] else { panic!() };
+            assert_eq!(vertices[0], Vec3::new(2.0, 0.0, 0.0));
+            // The plane is now x/2 + y = 1, normal ∝ (1/2, 1, 0).
+            let want = Vec3::new(0.5, 1.0, 0.0).normalize();
+            assert!(n.iter().all(|v| close(*v, want)), "{n:?}");
+            let face = (vertices[1] - vertices[0]).cross(vertices[2] - vertices[0]).normalize();
+            assert!(face.dot(want).abs() > 0.99999);
+        }
+
+        #[test]
+        fn a_mesh_read_twice_warns_once() {
+            let dir = tempfile::tempdir().unwrap();
+            write(dir.path(), "cube.obj", CUBE_OBJ);
+            let mesh = "[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\n";
+            let s = scene_file(dir.path(), &format!("{mesh}{mesh}translate = [3, 0, 0]\n")).unwrap();
+            assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+            assert!(s.warnings[0].to_string().contains("cube.mtl"));
+            assert_eq!(s.materials.len(), 2, "the TOML default, then the OBJ's default once");
+            assert!(s.objects.iter().all(|o| o.material == 1));
+            assert_eq!(s.primitive_count(), 24);
+        }
+
+        #[test]
+        fn mesh_errors() {
+            let dir = tempfile::tempdir().unwrap();
+            write(dir.path(), "cube.obj", CUBE_OBJ);
+            write(dir.path(), "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+            for (extra, at, needle) in [
+                ("[[object]]\ntype = \"mesh\"\npath = \"missing.obj\"\n", "scene.toml:12:", "cannot open"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"bad.obj\"\n", "bad.obj:4: ", "malformed OBJ"),
+                ("[[object]]\ntype = \"mesh\"\n", "scene.toml:10:", "needs `path`"),
+                (
+                    "[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\ntranslate = [1, 0, 0]\nmatrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
+                    "scene.toml:14:",
+                    "cannot be combined",
+                ),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nmatrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,1,1]]\n", "scene.toml:13:", "last row"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nmatrix = [[1,0,0,0],[0,1,0,0],[0,0,0,0],[0,0,0,1]]\n", "scene.toml:13:", "singular"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nmatrix = [[1,0,0],[0,1,0],[0,0,1]]\n", "scene.toml:13:", "matrix"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nscale = [1, 0, 1]\n", "scene.toml:13:", "zero"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nrotate = [1, 0]\n", "scene.toml:13:", "rotate"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nmaterial = \"nope\"\n", "scene.toml:13:", "nope"),
+                ("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\ntranslate = [1, 0, 0]\n", "scene.toml:10:", "`translate` does not apply"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nradius = 1\n", "scene.toml:10:", "`radius` does not apply"),
+            ] {
+                let e = scene_file(dir.path(), extra).unwrap_err().to_string();
+                assert!(e.contains(at) && e.contains(needle), "{extra}: {e}");
+            }
+        }
+
+        #[test]
+        fn include_merges_an_nff() {
+            let dir = tempfile::tempdir().unwrap();
+            // No `v` block: an included NFF may be geometry only.
+            write(dir.path(), "part.nff", "b 1 0 0\nl 1 2 3\nl 4 5 6 0 1 0\nf 0 1 0 1 0 0 0 1\ns 0 0 0 1\np 3\n0 0 0\n1 0 0\n0 1 0\n");
+            let s = scene_file(
+                dir.path(),
+                r#"
+[[light]]
+type = "point"
+position = [0, 9, 0]
+
+[material.red]
+color = [1, 0, 0]
+
+[[object]]
+type = "sphere"
+center = [5, 0, 0]
+radius = 1
+material = "red"
+
+[[include]]
+path = "part.nff"
+"#,
+            )
+            .unwrap();
+            assert_eq!(s.background, Vec3::ZERO, "the TOML file's image settings apply");
+            assert_eq!(s.objects.len(), 3);
+            assert_eq!(s.objects[0].material, 1);
+            assert_eq!(s.materials.len(), 3);
+            assert!(s.objects[1..].iter().all(|o| s.materials[o.material].color == Vec3::Y));
+            assert_eq!(s.objects[1].shapes[0], Shape::Sphere { center: Vec3::ZERO, radius: 1.0 });
+            assert_eq!(s.lights.len(), 3);
+            assert_eq!(s.lights[2].color, Vec3::Y);
+            assert!((s.lights[1].intensity - 0.5f32.sqrt()).abs() < 1e-7);
+            assert_eq!(s.camera.eye, Vec3::new(0.0, 0.0, 5.0));
+        }
+
+        #[test]
+        fn include_errors() {
+            let dir = tempfile::tempdir().unwrap();
+            write(dir.path(), "bad.nff", "s 0 0 0 1\ns 0 0\n");
+            write(dir.path(), "cube.obj", CUBE_OBJ);
+            for (extra, at, needle) in [
+                ("[[include]]\npath = \"nope.nff\"\n", "scene.toml:11:", "cannot read"),
+                ("[[include]]\npath = \"cube.obj\"\n", "scene.toml:11:", "only .nff"),
+                ("[[include]]\npath = \"bad.nff\"\n", "bad.nff:2:1:", "end of file"),
+                ("[[include]]\npath = \"bad.nff\"\ndepth = 2\n", "scene.toml:12:", "depth"),
+            ] {
+                let e = scene_file(dir.path(), extra).unwrap_err().to_string();
+                assert!(e.contains(at) && e.contains(needle), "{extra}: {e}");
+            }
+        }
     }
 }

@@ -1,0 +1,997 @@
+//! Eric Haines' Neutral File Format (NFF), as written by the Standard Procedural
+//! Databases (SPD).
+//!
+//! The file is read as a stream of whitespace-separated tokens, not lines (the
+//! SPD generators write `c` on one line, the NFF spec shows it on three), but
+//! every token remembers its line and column so that errors name the place.
+//! `#` starts a comment that runs to the end of its line.
+//!
+//! | keyword | operands | becomes |
+//! |---|---|---|
+//! | `v` | `from x y z`, `at x y z`, `up x y z`, `angle a`, `hither h`, `resolution w h` | camera and image size (see [`fov_y_from_angle`]); `hither` is checked and then ignored: the scene model has no near plane |
+//! | `b` | `r g b` | background colour |
+//! | `l` | `x y z [r g b]` | a point light (see [`light_intensity`]) |
+//! | `f` | `r g b Kd Ks Shine T ior` | the current material (see [`material`]) |
+//! | `c` | `bx by bz br ax ay az ar` | an open cone or cylinder, no caps |
+//! | `s` | `x y z r` | a sphere |
+//! | `p` | `n` then n vertices | a planar polygon, convex or concave, kept whole |
+//! | `pp` | `n` then n × (vertex, normal) | a smooth-shaded triangle (n = 3) or a fan of them |
+//!
+//! Every primitive becomes one [`Object`] (a `pp` fan is one object with several
+//! triangles). Malformed input is an error naming file, line and column; a
+//! degenerate primitive (no area, zero radius) is skipped with a warning in
+//! `Scene::warnings`, and a non-planar polygon is kept with a warning.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::Vec3;
+
+use crate::shape::{polygon_non_planarity, polygon_normal};
+use crate::toml_scene::MAX_IMAGE_SIDE;
+use crate::{
+    Attenuation, Camera, Light, LightKind, LoadError, Location, Material, Object, Projection,
+    RenderSettings, Scene, Shape, SpecularModel,
+};
+
+/// How to read the `angle` of the `v` block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NffAngle {
+    /// The NFF spec: `angle` spans from the centre of the top pixel row to the
+    /// centre of the bottom row (and left to right column).
+    #[default]
+    Centers,
+    /// `angle` spans from the top edge of the image to the bottom edge, as many
+    /// renderers read it.
+    Edges,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct NffOptions {
+    pub angle: NffAngle,
+}
+
+/// A polygon whose vertices stray further than this from its plane, relative to
+/// its size, is reported as non-planar (and kept).
+pub const NON_PLANAR_TOLERANCE: f32 = 1e-4;
+
+/// Converts NFF's `angle` (degrees) into the scene model's vertical,
+/// edge-to-edge field of view (degrees) for an image `height` pixels tall.
+///
+/// With [`NffAngle::Centers`] the angle spans the centres of the outer pixel
+/// rows, which lie (H − 1)/2 pixels from the image centre, while the image edge
+/// lies H/2 pixels away, so
+///
+/// ```text
+/// tan(fov_edge / 2) = tan(angle / 2) · H / (H − 1)
+/// ```
+///
+/// with H the number of rows (for a non-square image the vertical count is used
+/// and pixels are square, so the horizontal extent follows from the aspect
+/// ratio). [`NffAngle::Edges`] returns `angle` unchanged. `None` when the
+/// centre convention meets a one-row image (both centres coincide).
+pub fn fov_y_from_angle(angle_degrees: f64, height: u32, convention: NffAngle) -> Option<f64> {
+    match convention {
+        NffAngle::Edges => Some(angle_degrees),
+        NffAngle::Centers if height < 2 => None,
+        NffAngle::Centers => {
+            let h = f64::from(height);
+            let t = (angle_degrees.to_radians() / 2.0).tan() * h / (h - 1.0);
+            Some(2.0 * t.atan().to_degrees())
+        }
+    }
+}
+
+/// NFF leaves light intensity open; Glint gives each of the file's `n` lights
+/// intensity 1/√n, so that a scene keeps roughly the same brightness whether it
+/// has one light or many.
+pub fn light_intensity(light_count: usize) -> f32 {
+    1.0 / (light_count.max(1) as f32).sqrt()
+}
+
+/// The material of an NFF `f r g b Kd Ks Shine T index_of_refraction` line:
+///
+/// * colour O_d = (r, g, b), k_d = Kd, k_a = 0 (NFF has no ambient term);
+/// * highlights k_s = Ks, white (O_s unset), Phong exponent n = Shine, with the
+///   Phong (R·V) model, the NFF/SPD convention;
+/// * mirror reflectance k_m = Ks (grey), transmittance k_t = T (grey), and the
+///   index of refraction `ior` (an ior ≤ 0 on an opaque material, as some SPD
+///   files write, is read as 1).
+pub fn material(name: String, color: Vec3, kd: f32, ks: f32, shine: f32, t: f32, ior: f32) -> Material {
+    Material {
+        name,
+        ambient: 0.0,
+        diffuse: kd,
+        specular: ks,
+        shininess: shine,
+        color,
+        specular_color: None,
+        specular_model: SpecularModel::Phong,
+        metallic_f0: None,
+        reflect: Vec3::splat(ks),
+        transmit: Vec3::splat(t),
+        ior: if ior > 0.0 { ior } else { 1.0 },
+        fresnel: false,
+    }
+}
+
+/// Reads an NFF file into a scene.
+pub fn load(path: &Path, options: &NffOptions) -> Result<Scene, LoadError> {
+    let source = std::fs::read_to_string(path)
+        .map_err(|e| LoadError::new(path, None, format!("cannot read NFF file: {e}")))?;
+    parse(&source, path, options)
+}
+
+/// Parses NFF text; `path` names the file in errors and warnings.
+pub fn parse(source: &str, path: &Path, options: &NffOptions) -> Result<Scene, LoadError> {
+    let contents = parse_contents(source, path, options)?;
+    let Some(view) = contents.view else {
+        return Err(LoadError::new(path, None, "no viewpoint: an NFF scene needs a `v` block"));
+    };
+    Ok(Scene {
+        width: view.width,
+        height: view.height,
+        background: contents.background.unwrap_or(Vec3::ZERO),
+        camera: view.camera,
+        ambient: Vec3::ZERO,
+        lights: contents.lights,
+        materials: contents.materials,
+        objects: contents.objects,
+        depth_cue: None,
+        render: RenderSettings::default(),
+        warnings: contents.warnings,
+    })
+}
+
+/// The viewpoint of an NFF file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NffView {
+    pub camera: Camera,
+    pub width: u32,
+    pub height: u32,
+    /// The `hither` distance; the scene model has no near plane, so only
+    /// callers that want it look at it.
+    pub hither: Option<f32>,
+}
+
+/// Everything an NFF file holds, before it becomes a scene; the TOML loader's
+/// `[[include]]` merges these into a TOML scene. Objects index `materials`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NffContents {
+    pub view: Option<NffView>,
+    pub background: Option<Vec3>,
+    pub lights: Vec<Light>,
+    pub materials: Vec<Material>,
+    pub objects: Vec<Object>,
+    pub warnings: Vec<LoadError>,
+}
+
+/// Parses NFF text without requiring a `v` block.
+pub fn parse_contents(source: &str, path: &Path, options: &NffOptions) -> Result<NffContents, LoadError> {
+    let mut parser = Parser {
+        source,
+        path,
+        options,
+        tokens: tokenize(source),
+        pos: 0,
+        statement: None,
+        contents: NffContents {
+            view: None,
+            background: None,
+            lights: Vec::new(),
+            materials: Vec::new(),
+            objects: Vec::new(),
+            warnings: Vec::new(),
+        },
+        current_material: None,
+        material_ids: HashMap::new(),
+        light_specs: Vec::new(),
+    };
+    parser.run()?;
+    let mut contents = parser.contents;
+    let intensity = light_intensity(parser.light_specs.len());
+    contents.lights = parser
+        .light_specs
+        .iter()
+        .map(|&(position, color)| Light {
+            kind: LightKind::Point { position },
+            color,
+            intensity,
+            attenuation: Attenuation::None,
+            enabled: true,
+        })
+        .collect();
+    if contents.materials.is_empty() {
+        contents.materials.push(default_material());
+    }
+    Ok(contents)
+}
+
+/// What primitives before the first `f` get: white, fully diffuse.
+fn default_material() -> Material {
+    material("nff default".into(), Vec3::ONE, 1.0, 0.0, 0.0, 0.0, 1.0)
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Token<'a> {
+    text: &'a str,
+    /// Byte offset in the source.
+    offset: usize,
+    line: usize,
+}
+
+fn tokenize(source: &str) -> Vec<Token<'_>> {
+    let mut tokens = Vec::with_capacity(source.len() / 6);
+    let mut line_start = 0;
+    for (index, line) in source.split('\n').enumerate() {
+        let code = line.split_once('#').map_or(line, |(code, _)| code);
+        let mut rest = code;
+        let mut consumed = 0;
+        loop {
+            let trimmed = rest.trim_start();
+            consumed += rest.len() - trimmed.len();
+            if trimmed.is_empty() {
+                break;
+            }
+            let end = trimmed.find(char::is_whitespace).unwrap_or(trimmed.len());
+            tokens.push(Token { text: &trimmed[..end], offset: line_start + consumed, line: index + 1 });
+            consumed += end;
+            rest = &trimmed[end..];
+        }
+        line_start += line.len() + 1;
+    }
+    tokens
+}
+
+const KEYWORDS: &[&str] = &["v", "b", "l", "f", "c", "s", "p", "pp"];
+
+struct Parser<'a> {
+    source: &'a str,
+    path: &'a Path,
+    options: &'a NffOptions,
+    tokens: Vec<Token<'a>>,
+    pos: usize,
+    /// The keyword being read, for messages about its operands.
+    statement: Option<Token<'a>>,
+    contents: NffContents,
+    current_material: Option<usize>,
+    /// Material index by the bits of its `f` operands, so repeated `f` lines share one.
+    material_ids: HashMap<[u32; 8], usize>,
+    light_specs: Vec<(Vec3, Vec3)>,
+}
+
+impl<'a> Parser<'a> {
+    fn location(&self, token: &Token) -> Location {
+        let line_start = self.source[..token.offset].rfind('\n').map_or(0, |i| i + 1);
+        let column = self.source[line_start..token.offset].chars().count() + 1;
+        Location { line: token.line, column: Some(column) }
+    }
+
+    fn error(&self, token: &Token, message: impl Into<String>) -> LoadError {
+        LoadError::new(self.path, Some(self.location(token)), message)
+    }
+
+    fn warn(&mut self, token: &Token, message: impl Into<String>) {
+        let warning = self.error(token, message);
+        self.contents.warnings.push(warning);
+    }
+
+    fn statement_name(&self) -> String {
+        match &self.statement {
+            Some(t) => format!("`{}` (line {})", t.text, t.line),
+            None => "the file".into(),
+        }
+    }
+
+    fn peek(&self) -> Option<Token<'a>> {
+        self.tokens.get(self.pos).copied()
+    }
+
+    /// The next token, which must exist: `what` says what was expected.
+    fn expect(&mut self, what: &str) -> Result<Token<'a>, LoadError> {
+        match self.peek() {
+            Some(t) => {
+                self.pos += 1;
+                Ok(t)
+            }
+            None => {
+                let at = self.statement.or_else(|| self.tokens.last().copied());
+                let message = format!("unexpected end of file: {} needs {what}", self.statement_name());
+                Err(match at {
+                    Some(t) => self.error(&t, message),
+                    None => LoadError::new(self.path, None, message),
+                })
+            }
+        }
+    }
+
+    fn number(&mut self, what: &str) -> Result<f32, LoadError> {
+        let t = self.expect(what)?;
+        match t.text.parse::<f32>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(_) => Err(self.error(&t, format!("{what}: `{}` is not a finite number", t.text))),
+            Err(_) => Err(self.error(
+                &t,
+                format!("expected a number ({what}) for {}, found `{}`", self.statement_name(), t.text),
+            )),
+        }
+    }
+
+    fn non_negative(&mut self, what: &str) -> Result<f32, LoadError> {
+        let offset = self.pos;
+        let v = self.number(what)?;
+        if v < 0.0 {
+            let t = self.tokens[offset];
+            return Err(self.error(&t, format!("{what} must not be negative, found {v}")));
+        }
+        Ok(v)
+    }
+
+    fn vec3(&mut self, what: &str) -> Result<Vec3, LoadError> {
+        Ok(Vec3::new(
+            self.number(&format!("{what} x"))?,
+            self.number(&format!("{what} y"))?,
+            self.number(&format!("{what} z"))?,
+        ))
+    }
+
+    fn color(&mut self, what: &str) -> Result<Vec3, LoadError> {
+        Ok(Vec3::new(
+            self.non_negative(&format!("{what} red"))?,
+            self.non_negative(&format!("{what} green"))?,
+            self.non_negative(&format!("{what} blue"))?,
+        ))
+    }
+
+    /// A count of vertices: a whole number, at least `min`.
+    fn count(&mut self, what: &str, min: usize) -> Result<usize, LoadError> {
+        let t = self.expect(what)?;
+        let n: usize = t.text.parse().map_err(|_| {
+            self.error(&t, format!("expected a whole number ({what}) for {}, found `{}`", self.statement_name(), t.text))
+        })?;
+        if n < min {
+            return Err(self.error(&t, format!("{what}: needs at least {min}, found {n}")));
+        }
+        Ok(n)
+    }
+
+    fn run(&mut self) -> Result<(), LoadError> {
+        while let Some(t) = self.peek() {
+            self.pos += 1;
+            if !KEYWORDS.contains(&t.text) {
+                let message = if t.text.parse::<f64>().is_ok() {
+                    format!("unexpected number `{}`: too many values for {}", t.text, self.statement_name())
+                } else {
+                    format!("unknown keyword `{}`", t.text)
+                };
+                return Err(self.error(&t, message));
+            }
+            self.statement = Some(t);
+            match t.text {
+                "v" => self.view(t)?,
+                "b" => {
+                    let c = self.color("background")?;
+                    self.contents.background = Some(c);
+                }
+                "l" => self.light()?,
+                "f" => self.fill(t)?,
+                "s" => self.sphere(t)?,
+                "c" => self.cone(t)?,
+                "p" => self.polygon(t)?,
+                "pp" => self.patch(t)?,
+                _ => unreachable!("every keyword is handled"),
+            }
+        }
+        Ok(())
+    }
+
+    fn view(&mut self, v: Token<'a>) -> Result<(), LoadError> {
+        if self.contents.view.is_some() {
+            return Err(self.error(&v, "a second `v` block: an NFF file has one viewpoint"));
+        }
+        let (mut from, mut at, mut up, mut angle, mut hither, mut resolution) = (None, None, None, None, None, None);
+        while let Some(t) = self.peek() {
+            let seen = match t.text {
+                "from" => from.is_some(),
+                "at" => at.is_some(),
+                "up" => up.is_some(),
+                "angle" => angle.is_some(),
+                "hither" => hither.is_some(),
+                "resolution" => resolution.is_some(),
+                _ => break,
+            };
+            if seen {
+                return Err(self.error(&t, format!("`{}` given twice in the `v` block", t.text)));
+            }
+            self.pos += 1;
+            self.statement = Some(t);
+            match t.text {
+                "from" => from = Some(self.vec3("from")?),
+                "at" => at = Some(self.vec3("at")?),
+                "up" => up = Some(self.vec3("up")?),
+                "angle" => {
+                    let a = self.number("angle")?;
+                    if !(a > 0.0 && a < 180.0) {
+                        let tok = self.tokens[self.pos - 1];
+                        return Err(self.error(&tok, format!("angle: {a} is not between 0 and 180 degrees")));
+                    }
+                    angle = Some((a, t));
+                }
+                "hither" => hither = Some(self.non_negative("hither")?),
+                _ => {
+                    let side = |parser: &mut Self, what: &str| -> Result<u32, LoadError> {
+                        let tok = parser.expect(what)?;
+                        tok.text.parse::<u32>().ok().filter(|s| (1..=MAX_IMAGE_SIDE).contains(s)).ok_or_else(|| {
+                            parser.error(&tok, format!("resolution: {what} `{}` is not a whole number in 1..={MAX_IMAGE_SIDE}", tok.text))
+                        })
+                    };
+                    let w = side(self, "width")?;
+                    let h = side(self, "height")?;
+                    resolution = Some((w, h));
+                }
+            }
+        }
+        self.statement = Some(v);
+        let missing = |name: &str| self.error(&v, format!("the `v` block has no `{name}`"));
+        let from = from.ok_or_else(|| missing("from"))?;
+        let at = at.ok_or_else(|| missing("at"))?;
+        let up = up.ok_or_else(|| missing("up"))?;
+        let (angle, angle_token) = angle.ok_or_else(|| missing("angle"))?;
+        let (width, height) = resolution.ok_or_else(|| missing("resolution"))?;
+        let fov = fov_y_from_angle(f64::from(angle), height, self.options.angle).ok_or_else(|| {
+            self.error(&angle_token, "angle: a one-row image has no distance between its top and bottom pixel centres (read the angle edge to edge instead)")
+        })?;
+        let camera = Camera { eye: from, look_at: at, up, projection: Projection::Perspective { fov_y_degrees: fov as f32 } };
+        if camera.basis().is_none() {
+            return Err(self.error(&v, "`up` is parallel to the view direction (or `from` equals `at`)"));
+        }
+        self.contents.view = Some(NffView { camera, width, height, hither });
+        Ok(())
+    }
+
+    fn light(&mut self) -> Result<(), LoadError> {
+        let position = self.vec3("light position")?;
+        // The colour is optional: it is there when a number follows.
+        let has_color = self.peek().is_some_and(|t| !KEYWORDS.contains(&t.text) && t.text.parse::<f64>().is_ok());
+        let color = if has_color { self.color("light colour")? } else { Vec3::ONE };
+        self.light_specs.push((position, color));
+        Ok(())
+    }
+
+    fn fill(&mut self, f: Token<'a>) -> Result<(), LoadError> {
+        let color = self.color("colour")?;
+        let kd = self.non_negative("Kd")?;
+        let ks = self.non_negative("Ks")?;
+        let shine = self.non_negative("Shine")?;
+        let t = self.non_negative("T")?;
+        let ior_at = self.pos;
+        let ior = self.number("index of refraction")?;
+        if t > 0.0 && ior <= 0.0 {
+            let tok = self.tokens[ior_at];
+            return Err(self.error(&tok, format!("index of refraction must be positive for a transmissive material, found {ior}")));
+        }
+        let key = [color.x, color.y, color.z, kd, ks, shine, t, ior].map(f32::to_bits);
+        let index = match self.material_ids.get(&key) {
+            Some(&i) => i,
+            None => {
+                let i = self.contents.materials.len();
+                self.contents.materials.push(material(format!("f line {}", f.line), color, kd, ks, shine, t, ior));
+                self.material_ids.insert(key, i);
+                i
+            }
+        };
+        self.current_material = Some(index);
+        Ok(())
+    }
+
+    fn push(&mut self, shapes: Vec<Shape>) {
+        let material = match self.current_material {
+            Some(m) => m,
+            None => {
+                let m = self.contents.materials.len();
+                self.contents.materials.push(default_material());
+                self.current_material = Some(m);
+                m
+            }
+        };
+        self.contents.objects.push(Object { material, shapes });
+    }
+
+    fn sphere(&mut self, s: Token<'a>) -> Result<(), LoadError> {
+        let center = self.vec3("centre")?;
+        let radius = self.non_negative("radius")?;
+        if radius == 0.0 {
+            self.warn(&s, "sphere of radius 0 skipped");
+            return Ok(());
+        }
+        self.push(vec![Shape::Sphere { center, radius }]);
+        Ok(())
+    }
+
+    fn cone(&mut self, c: Token<'a>) -> Result<(), LoadError> {
+        let mut base = self.vec3("base")?;
+        let mut base_radius = self.non_negative("base radius")?;
+        let mut apex = self.vec3("apex")?;
+        let mut apex_radius = self.non_negative("apex radius")?;
+        if base == apex || (base_radius == 0.0 && apex_radius == 0.0) {
+            self.warn(&c, "degenerate cone (base equals apex, or both radii 0) skipped");
+            return Ok(());
+        }
+        if base_radius == 0.0 {
+            // Keep the wide end as the base; the open cone is the same surface.
+            std::mem::swap(&mut base, &mut apex);
+            std::mem::swap(&mut base_radius, &mut apex_radius);
+        }
+        self.push(vec![Shape::Cone { base, base_radius, apex, apex_radius }]);
+        Ok(())
+    }
+
+    fn polygon(&mut self, p: Token<'a>) -> Result<(), LoadError> {
+        let n = self.count("vertex count", 3)?;
+        let mut vertices = Vec::with_capacity(n.min(self.tokens.len() / 3));
+        for i in 0..n {
+            vertices.push(self.vec3(&format!("vertex {}", i + 1))?);
+        }
+        let Some(normal) = polygon_normal(&vertices) else {
+            self.warn(&p, format!("degenerate polygon ({n} vertices, no area) skipped"));
+            return Ok(());
+        };
+        let deviation = polygon_non_planarity(&vertices, normal);
+        if deviation > NON_PLANAR_TOLERANCE {
+            self.warn(&p, format!("polygon is not planar (its vertices leave the plane by {deviation:.2e} of its size); kept"));
+        }
+        self.push(vec![Shape::Polygon { vertices }]);
+        Ok(())
+    }
+
+    fn patch(&mut self, pp: Token<'a>) -> Result<(), LoadError> {
+        let n = self.count("vertex count", 3)?;
+        let mut vertices = Vec::with_capacity(n.min(self.tokens.len() / 6));
+        let mut normals = Vec::with_capacity(vertices.capacity());
+        for i in 0..n {
+            vertices.push(self.vec3(&format!("vertex {}", i + 1))?);
+            normals.push(self.vec3(&format!("normal {}", i + 1))?);
+        }
+        if polygon_normal(&vertices).is_none() {
+            self.warn(&pp, format!("degenerate patch ({n} vertices, no area) skipped"));
+            return Ok(());
+        }
+        let smooth = normals.iter().all(|n| n.length() > 0.0);
+        if !smooth {
+            self.warn(&pp, "patch has a zero-length vertex normal; shaded flat");
+        }
+        let normals: Vec<Vec3> = normals.iter().map(|n| n.normalize_or_zero()).collect();
+        let mut shapes = Vec::with_capacity(n - 2);
+        for i in 1..n - 1 {
+            let tri = [vertices[0], vertices[i], vertices[i + 1]];
+            // A fan over a convex patch with collinear neighbours has slivers of no area.
+            if n > 3 && polygon_normal(&tri).is_none() {
+                continue;
+            }
+            let normals = smooth.then(|| [normals[0], normals[i], normals[i + 1]]);
+            shapes.push(Shape::Triangle { vertices: tri, normals });
+        }
+        self.push(shapes);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::fmt::Write as _;
+    use std::path::PathBuf;
+
+    const VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.1\nresolution 64 48\n";
+
+    fn parse_str(body: &str) -> Result<Scene, LoadError> {
+        parse(&format!("{VIEW}{body}"), Path::new("t.nff"), &NffOptions::default())
+    }
+
+    fn error(body: &str) -> String {
+        parse_str(body).unwrap_err().to_string()
+    }
+
+    /// The first shape of the only object.
+    fn only_shape(s: &Scene) -> &Shape {
+        assert_eq!(s.objects.len(), 1);
+        &s.objects[0].shapes[0]
+    }
+
+    #[test]
+    fn view_block() {
+        let s = parse_str("").unwrap();
+        assert_eq!((s.width, s.height), (64, 48));
+        assert_eq!(s.camera.eye, Vec3::new(0.0, 0.0, 5.0));
+        assert_eq!(s.camera.up, Vec3::Y);
+        assert_eq!(s.background, Vec3::ZERO);
+        assert_eq!(s.ambient, Vec3::ZERO);
+        assert_eq!(s.render, RenderSettings::default());
+        assert!(s.objects.is_empty() && s.lights.is_empty() && s.warnings.is_empty());
+    }
+
+    #[test]
+    fn angle_conversion_centres_and_edges() {
+        // 3 rows, angle 90: the outer row centres are 1 pixel from the middle, the
+        // edges 1.5 pixels, so tan(fov/2) = tan(45°) · 3/2 = 1.5 and
+        // fov = 2·atan(1.5) = 112.61986494804042°.
+        let src = "v from 0 0 5 at 0 0 0 up 0 1 0 angle 90 hither 1 resolution 3 3";
+        let fov = |angle| match parse(src, Path::new("a.nff"), &NffOptions { angle }).unwrap().camera.projection {
+            Projection::Perspective { fov_y_degrees } => fov_y_degrees,
+            p => panic!("{p:?}"),
+        };
+        assert!((fov(NffAngle::Centers) - 112.619_865).abs() < 1e-4, "{}", fov(NffAngle::Centers));
+        assert_eq!(fov(NffAngle::Edges), 90.0);
+        // SPD's usual 45° at 512 rows: 2·atan(tan(22.5°)·512/511) = 45.0793…°.
+        let f = fov_y_from_angle(45.0, 512, NffAngle::Centers).unwrap();
+        assert!((f - 45.079_261_5).abs() < 1e-6, "{f}");
+        assert!(fov_y_from_angle(45.0, 1, NffAngle::Centers).is_none());
+        let e = parse("v from 0 0 5 at 0 0 0 up 0 1 0 angle 30 resolution 4 1", Path::new("a.nff"), &NffOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("a.nff:1:32:"), "{e}");
+    }
+
+    #[test]
+    fn background_and_lights() {
+        let s = parse_str("b 0.1 0.2 0.3\nl 1 2 3\nl 4 5 6 1 0 0\nl 7 8 9\n").unwrap();
+        assert_eq!(s.background, Vec3::new(0.1, 0.2, 0.3));
+        assert_eq!(s.lights.len(), 3);
+        assert_eq!(s.lights[0].kind, LightKind::Point { position: Vec3::new(1.0, 2.0, 3.0) });
+        assert_eq!(s.lights[0].color, Vec3::ONE);
+        assert_eq!(s.lights[1].color, Vec3::X);
+        assert_eq!(s.lights[2].kind, LightKind::Point { position: Vec3::new(7.0, 8.0, 9.0) });
+        for l in &s.lights {
+            assert!((l.intensity - 1.0 / 3f32.sqrt()).abs() < 1e-7);
+            assert_eq!(l.attenuation, Attenuation::None);
+            assert!(l.enabled);
+        }
+    }
+
+    #[test]
+    fn fill_maps_to_phong_mirror_glass() {
+        let s = parse_str("f 1 0.5 0.25 0.6 0.3 40 0.2 1.5\ns 0 0 0 1\nf 1 1 1 1 0 0 0 0\ns 0 0 0 1\n").unwrap();
+        let m = &s.materials[s.objects[0].material];
+        assert_eq!(m.color, Vec3::new(1.0, 0.5, 0.25));
+        assert_eq!((m.ambient, m.diffuse, m.specular, m.shininess), (0.0, 0.6, 0.3, 40.0));
+        assert_eq!(m.specular_color, None);
+        assert_eq!(m.specular_model, SpecularModel::Phong);
+        assert_eq!(m.reflect, Vec3::splat(0.3));
+        assert_eq!(m.transmit, Vec3::splat(0.2));
+        assert_eq!(m.ior, 1.5);
+        assert!(!m.fresnel);
+        let opaque = &s.materials[s.objects[1].material];
+        assert_eq!(opaque.ior, 1.0, "ior 0 on an opaque material reads as 1");
+    }
+
+    #[test]
+    fn identical_fills_share_a_material() {
+        let s = parse_str("f 1 0 0 1 0 0 0 1\ns 0 0 0 1\nf 0 1 0 1 0 0 0 1\ns 0 0 0 1\nf 1 0 0 1 0 0 0 1\ns 0 0 0 1\n").unwrap();
+        assert_eq!(s.materials.len(), 2);
+        let ids: Vec<usize> = s.objects.iter().map(|o| o.material).collect();
+        assert_eq!(ids, [0, 1, 0]);
+    }
+
+    #[test]
+    fn primitives_before_any_fill_get_a_default_material() {
+        let s = parse_str("s 0 0 0 1\n").unwrap();
+        assert_eq!(s.materials.len(), 1);
+        assert_eq!(s.objects[0].material, 0);
+        assert_eq!(s.materials[0].color, Vec3::ONE);
+    }
+
+    #[test]
+    fn sphere() {
+        let s = parse_str("s 1 2 3 0.5\n").unwrap();
+        assert_eq!(only_shape(&s), &Shape::Sphere { center: Vec3::new(1.0, 2.0, 3.0), radius: 0.5 });
+    }
+
+    #[test]
+    fn cone_on_one_line_or_three_is_the_same() {
+        let one = parse_str("c 0 0 0 1 0 2 0 0.5\n").unwrap();
+        let three = parse_str("c\n0 0 0 1\n0 2 0 0.5\n").unwrap();
+        let cone = Shape::Cone { base: Vec3::ZERO, base_radius: 1.0, apex: Vec3::new(0.0, 2.0, 0.0), apex_radius: 0.5 };
+        assert_eq!(only_shape(&one), &cone);
+        assert_eq!(one.objects, three.objects);
+        // A point at the base is stored with the wide end as the base.
+        let flipped = parse_str("c 0 2 0 0 0 0 0 1\n").unwrap();
+        assert_eq!(only_shape(&flipped), &Shape::Cone { base: Vec3::ZERO, base_radius: 1.0, apex: Vec3::new(0.0, 2.0, 0.0), apex_radius: 0.0 });
+    }
+
+    #[test]
+    fn concave_twelve_gon_stays_a_polygon() {
+        // A plus sign: 12 vertices, concave at four corners.
+        let pts = [(1, 0), (2, 0), (2, 1), (3, 1), (3, 2), (2, 2), (2, 3), (1, 3), (1, 2), (0, 2), (0, 1), (1, 1)];
+        let mut src = String::from("p 12\n");
+        for (x, y) in pts {
+            writeln!(src, "{x} {y} 4").unwrap();
+        }
+        let s = parse_str(&src).unwrap();
+        let Shape::Polygon { vertices } = only_shape(&s) else { panic!() };
+        assert_eq!(vertices.len(), 12);
+        assert_eq!(vertices[3], Vec3::new(3.0, 1.0, 4.0));
+        assert!(s.warnings.is_empty());
+    }
+
+    #[test]
+    fn patches_are_smooth_triangles_and_fans() {
+        let s = parse_str("pp 3\n0 0 0 0 0 2\n1 0 0 0 0 1\n0 1 0 0 1 1\n").unwrap();
+        let Shape::Triangle { vertices, normals: Some(n) } = only_shape(&s) else { panic!() };
+        assert_eq!(vertices[1], Vec3::X);
+        assert_eq!(n[0], Vec3::Z, "normals are normalised");
+        assert!((n[2] - Vec3::new(0.0, 1.0, 1.0).normalize()).length() < 1e-7);
+
+        let s = parse_str("pp 5\n0 0 0 0 0 1\n1 0 0 0 0 1\n2 1 0 0 0 1\n1 2 0 0 0 1\n0 1 0 0 0 1\n").unwrap();
+        assert_eq!(s.objects.len(), 1);
+        assert_eq!(s.objects[0].shapes.len(), 3);
+        let Shape::Triangle { vertices, normals: Some(_) } = &s.objects[0].shapes[2] else { panic!() };
+        assert_eq!(*vertices, [Vec3::ZERO, Vec3::new(1.0, 2.0, 0.0), Vec3::Y]);
+    }
+
+    #[test]
+    fn comments_are_skipped() {
+        let s = parse(
+            "# a scene\nv # the view\nfrom 0 0 5 at 0 0 0 up 0 1 0 angle 45 resolution 8 8\n# s 0 0 0 1\ns 0 0 0 1 # trailing\n#s 1 1 1 1",
+            Path::new("c.nff"),
+            &NffOptions::default(),
+        )
+        .unwrap();
+        assert_eq!(s.objects.len(), 1);
+    }
+
+    #[test]
+    fn degenerate_primitives_warn_and_are_skipped() {
+        let s = parse_str("p 3\n0 0 0\n1 0 0\n2 0 0\npp 3\n0 0 0 0 0 1\n0 0 0 0 0 1\n1 1 1 0 0 1\ns 0 0 0 0\nc 0 0 0 1 0 0 0 1\ns 0 0 0 1\n").unwrap();
+        assert_eq!(s.objects.len(), 1);
+        assert_eq!(s.warnings.len(), 4);
+        let w: Vec<String> = s.warnings.iter().map(ToString::to_string).collect();
+        assert!(w[0].starts_with("t.nff:8:1:") && w[0].contains("degenerate polygon"), "{w:?}");
+        assert!(w[1].starts_with("t.nff:12:1:") && w[1].contains("degenerate patch"), "{w:?}");
+        assert!(w[2].starts_with("t.nff:16:") && w[2].contains("radius 0"), "{w:?}");
+        assert!(w[3].starts_with("t.nff:17:") && w[3].contains("cone"), "{w:?}");
+    }
+
+    #[test]
+    fn non_planar_polygon_warns_and_is_kept() {
+        let s = parse_str("p 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n").unwrap();
+        assert_eq!(s.objects.len(), 1);
+        assert_eq!(s.warnings.len(), 1);
+        assert!(s.warnings[0].to_string().contains("not planar"));
+    }
+
+    #[test]
+    fn malformed_lines_name_file_line_and_problem() {
+        // VIEW is 7 lines, so the body starts on line 8.
+        for (body, at, needle) in [
+            ("s 0 0 0 1\nq 1 2 3\n", "t.nff:9:1:", "unknown keyword `q`"),
+            ("s 0 0 0 1 7\n", "t.nff:8:11:", "too many values for `s` (line 8)"),
+            ("s 0 0 zero 1\n", "t.nff:8:7:", "found `zero`"),
+            ("s 0 0 0\ns 1 1 1 1\n", "t.nff:9:1:", "expected a number (radius)"),
+            ("s 0 0 0 -1\n", "t.nff:8:9:", "radius must not be negative"),
+            ("c 0 0 0 1 0 1 0 -0.5\n", "t.nff:8:17:", "apex radius must not be negative"),
+            ("s 0 nan 0 1\n", "t.nff:8:5:", "not a finite number"),
+            ("s 0 inf 0 1\n", "t.nff:8:5:", "not a finite number"),
+            ("s 0 1e39 0 1\n", "t.nff:8:5:", "not a finite number"),
+            ("p 2\n0 0 0\n1 0 0\n", "t.nff:8:3:", "at least 3"),
+            ("p 3.5\n", "t.nff:8:3:", "whole number"),
+            ("p 3\n0 0 0\n1 0 0\n", "t.nff:8:1:", "end of file"),
+            ("pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0\n", "t.nff:8:1:", "normal 3"),
+            ("f 1 1 1 0.5 0.5 10 0.5 0\n", "t.nff:8:24:", "index of refraction"),
+            ("f 1 1 1 0.5 0.5 10 0\n", "t.nff:8:1:", "end of file"),
+            ("l 1 2 3 1 1\n", "t.nff:8:1:", "light colour blue"),
+            ("b 0.1 -0.2 0.3\n", "t.nff:8:7:", "must not be negative"),
+            ("v from 0 0 1 at 0 0 0 up 0 1 0 angle 45 resolution 8 8\n", "t.nff:8:1:", "second `v`"),
+        ] {
+            let e = error(body);
+            assert!(e.starts_with(at), "{body:?}: {e}");
+            assert!(e.contains(needle), "{body:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn bad_view_blocks() {
+        let p = |src: &str| parse(src, Path::new("v.nff"), &NffOptions::default()).unwrap_err().to_string();
+        let e = p("s 0 0 0 1\n");
+        assert!(e.starts_with("v.nff: ") && e.contains("`v`"), "{e}");
+        let e = p("v\nfrom 0 0 5\nat 0 0 0\nangle 45\nresolution 8 8\n");
+        assert!(e.starts_with("v.nff:1:1:") && e.contains("no `up`"), "{e}");
+        let e = p("v\nfrom 0 0 5\nat 0 0 0\nup 0 0 1\nangle 45\nresolution 8 8\n");
+        assert!(e.starts_with("v.nff:1:1:") && e.contains("parallel"), "{e}");
+        let e = p("v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 180\nresolution 8 8\n");
+        assert!(e.starts_with("v.nff:5:7:") && e.contains("angle"), "{e}");
+        let e = p("v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nresolution 8 0\n");
+        assert!(e.starts_with("v.nff:6:14:") && e.contains("height"), "{e}");
+        let e = p("v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nup 0 1 0\n");
+        assert!(e.starts_with("v.nff:5:1:") && e.contains("twice"), "{e}");
+    }
+
+    /// Writes shapes as NFF text, the way the SPD generators do (one material).
+    fn generate(shapes: &[Shape]) -> String {
+        let mut out = String::from("b 0 0 0\nv\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 32 32\nl 5 5 5\nf 1 0 0 1 0 0 0 1\n");
+        let v3 = |v: Vec3| format!("{} {} {}", v.x, v.y, v.z);
+        for shape in shapes {
+            match shape {
+                Shape::Sphere { center, radius } => writeln!(out, "s {} {radius}", v3(*center)),
+                Shape::Cone { base, base_radius, apex, apex_radius } => {
+                    writeln!(out, "c {} {base_radius} {} {apex_radius}", v3(*base), v3(*apex))
+                }
+                Shape::Polygon { vertices } => {
+                    writeln!(out, "p {}", vertices.len()).unwrap();
+                    vertices.iter().try_for_each(|v| writeln!(out, "{}", v3(*v)))
+                }
+                Shape::Triangle { vertices, normals } => {
+                    let normals = normals.expect("generated patches have normals");
+                    writeln!(out, "pp 3").unwrap();
+                    (0..3).try_for_each(|i| writeln!(out, "{} {}", v3(vertices[i]), v3(normals[i])))
+                }
+            }
+            .unwrap();
+        }
+        out
+    }
+
+    #[test]
+    fn generated_files_round_trip() {
+        let mut shapes = Vec::new();
+        for i in 0..20 {
+            let f = i as f32;
+            let o = Vec3::new(f * 0.37 - 3.0, (f * 1.3).sin(), f / 7.0);
+            shapes.push(Shape::Sphere { center: o, radius: 0.1 + f / 100.0 });
+            shapes.push(Shape::Cone { base: o, base_radius: 0.3, apex: o + Vec3::new(0.1, 1.0, f / 3.0), apex_radius: f / 40.0 });
+            let ring: Vec<Vec3> = (0..(3 + i % 9))
+                .map(|k| {
+                    let a = k as f32 * std::f32::consts::TAU / (3 + i % 9) as f32;
+                    let r = if k % 2 == 1 { 0.5 } else { 1.0 };
+                    o + Vec3::new(r * a.cos(), r * a.sin(), 0.0)
+                })
+                .collect();
+            shapes.push(Shape::Polygon { vertices: ring });
+            let n = [Vec3::Z, Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, 0.6, 0.8)];
+            shapes.push(Shape::Triangle { vertices: [o, o + Vec3::X, o + Vec3::Y * 1.5], normals: Some(n) });
+        }
+        let text = generate(&shapes);
+        let scene = parse(&text, Path::new("gen.nff"), &NffOptions::default()).unwrap();
+        assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+        assert_eq!(scene.objects.len(), shapes.len());
+        for (object, expected) in scene.objects.iter().zip(&shapes) {
+            assert_eq!(object.shapes.len(), 1);
+            match (&object.shapes[0], expected) {
+                (Shape::Triangle { vertices: a, normals: Some(na) }, Shape::Triangle { vertices: b, normals: Some(nb) }) => {
+                    assert_eq!(a, b);
+                    for (x, y) in na.iter().zip(nb) {
+                        assert!((*x - *y).length() < 1e-6);
+                    }
+                }
+                (got, want) => assert_eq!(got, want),
+            }
+        }
+        assert_eq!(scene.lights.len(), 1);
+        assert_eq!(scene.lights[0].intensity, 1.0);
+    }
+
+    fn spd_dir() -> PathBuf {
+        let dir = std::env::var_os("GLINT_SPD_DIR")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/spd")));
+        assert!(
+            dir.is_dir(),
+            "SPD directory {} not found: set GLINT_SPD_DIR to the folder holding the SPD .nff files",
+            dir.display()
+        );
+        dir
+    }
+
+    #[derive(Debug, Default, PartialEq)]
+    struct Counts {
+        spheres: usize,
+        cones: usize,
+        polygons: usize,
+        triangles: usize,
+        lights: usize,
+        warnings: usize,
+    }
+
+    fn counts(s: &Scene) -> Counts {
+        let mut c = Counts { lights: s.lights.len(), warnings: s.warnings.len(), ..Counts::default() };
+        for shape in s.objects.iter().flat_map(|o| &o.shapes) {
+            match shape {
+                Shape::Sphere { .. } => c.spheres += 1,
+                Shape::Cone { .. } => c.cones += 1,
+                Shape::Polygon { .. } => c.polygons += 1,
+                Shape::Triangle { .. } => c.triangles += 1,
+            }
+        }
+        c
+    }
+
+    #[test]
+    fn every_spd_file_loads() {
+        let dir = spd_dir();
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "nff"))
+            .collect();
+        files.sort();
+        assert!(files.len() >= 40, "expected the SPD set in {}, found {} .nff files", dir.display(), files.len());
+        let c = |spheres, cones, polygons, triangles, lights, warnings| Counts { spheres, cones, polygons, triangles, lights, warnings };
+        let expected: HashMap<&str, Counts> = [
+            ("balls_s1", c(10, 0, 1, 0, 3, 0)),
+            ("balls_s4", c(7381, 0, 1, 0, 3, 0)),
+            ("gears_s1", c(0, 0, 147, 0, 5, 0)),
+            ("gears_s4", c(0, 0, 9345, 0, 5, 0)),
+            ("mount_s1", c(4, 0, 8, 0, 1, 0)),
+            ("mount_s6", c(4, 0, 8192, 0, 1, 0)),
+            ("rings_s1", c(30, 30, 1, 0, 3, 0)),
+            ("rings_s7", c(4200, 4200, 1, 0, 3, 0)),
+            // Two degenerate patches, each written as two triangles: 4 warnings.
+            ("teapot_s1", c(0, 0, 1, 52, 2, 4)),
+            ("teapot_s6", c(0, 0, 36, 2256, 2, 0)),
+            ("tetra_s1", c(0, 0, 4, 0, 1, 0)),
+            ("tetra_s6", c(0, 0, 4096, 0, 1, 0)),
+            ("tree_s1", c(3, 3, 1, 0, 7, 0)),
+            ("tree_s11", c(4095, 4095, 1, 0, 7, 0)),
+            ("jacks_s3", c(438, 219, 0, 0, 1, 0)),
+            ("shells_s5", c(5761, 0, 0, 0, 1, 0)),
+            ("lattice_s12", c(2197, 6084, 0, 0, 6, 0)),
+            ("sombrero_s2", c(0, 0, 7938, 0, 1, 0)),
+            ("nurbtst_s1", c(0, 0, 0, 1500, 1, 0)),
+        ]
+        .into_iter()
+        .collect();
+        let mut checked = 0;
+        for file in &files {
+            let scene = load(file, &NffOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+            let name = file.file_stem().unwrap().to_str().unwrap();
+            let got = counts(&scene);
+            if name != "teapot_s1" {
+                assert!(scene.warnings.is_empty(), "{name}: {:?}", scene.warnings);
+            }
+            assert!(scene.primitive_count() > 0, "{name}");
+            if let Some(want) = expected.get(name) {
+                assert_eq!(&got, want, "{name}");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, expected.len(), "some expected SPD files are missing from {}", dir.display());
+    }
+
+    #[test]
+    fn spd_details() {
+        let dir = spd_dir();
+        let teapot = load(&dir.join("teapot_s1.nff"), &NffOptions::default()).unwrap();
+        for w in &teapot.warnings {
+            assert!(w.to_string().contains("teapot_s1.nff:") && w.to_string().contains("degenerate patch"), "{w}");
+        }
+        let jacks = load(&dir.join("jacks_s1.nff"), &NffOptions::default()).unwrap();
+        assert_eq!((jacks.width, jacks.height), (256, 256));
+        let Projection::Perspective { fov_y_degrees } = jacks.camera.projection else { panic!() };
+        let want = fov_y_from_angle(25.0, 256, NffAngle::Centers).unwrap() as f32;
+        assert_eq!(fov_y_degrees, want);
+        assert!(fov_y_degrees > 25.0 && fov_y_degrees < 25.2);
+        assert_eq!(jacks.background, Vec3::new(0.2, 0.05, 0.2));
+
+        let lattice = load(&dir.join("lattice_s12.nff"), &NffOptions::default()).unwrap();
+        assert_eq!(lattice.materials.len(), 4, "8281 `f` lines, 4 distinct");
+
+        let mount = load(&dir.join("mount_s1.nff"), &NffOptions::default()).unwrap();
+        let glass = &mount.materials[mount.objects[0].material];
+        assert_eq!((glass.transmit, glass.ior), (Vec3::splat(0.9), 1.5));
+
+        let gears = load(&dir.join("gears_s1.nff"), &NffOptions::default()).unwrap();
+        let big = gears.objects.iter().flat_map(|o| &o.shapes).filter(|s| matches!(s, Shape::Polygon { vertices } if vertices.len() == 144));
+        assert!(big.count() > 0);
+
+        // The crate's entry points pick this reader by extension and pass the angle option.
+        let balls = crate::load(&dir.join("balls_s1.nff")).unwrap();
+        let edges = crate::load_with(&dir.join("balls_s1.nff"), &crate::LoadOptions { nff_angle: NffAngle::Edges }).unwrap();
+        assert_eq!(edges.camera.projection, Projection::Perspective { fov_y_degrees: 45.0 });
+        assert_ne!(balls.camera.projection, edges.camera.projection);
+        assert_eq!(balls.objects, edges.objects);
+        let e = crate::load(&dir.join("README.md")).unwrap_err().to_string();
+        assert!(e.contains("README.md: unknown scene format"), "{e}");
+
+        let tree = load(&dir.join("tree_s1.nff"), &NffOptions::default()).unwrap();
+        assert!(tree.objects.iter().flat_map(|o| &o.shapes).any(|s| matches!(s, Shape::Cone { base_radius, apex_radius, .. } if base_radius != apex_radius)));
+    }
+}
