@@ -106,21 +106,23 @@ struct ResolveParams {
 /// The compiled kernels on one device. Cheap to clone the device and queue
 /// handles into it, so the viewer can share eframe's device.
 pub struct Renderer {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    trace: wgpu::ComputePipeline,
-    resolve: wgpu::ComputePipeline,
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) trace: wgpu::ComputePipeline,
+    pub(crate) resolve: wgpu::ComputePipeline,
 }
 
 /// A scene uploaded for one image size.
 pub struct SceneBuffers {
-    width: u32,
-    height: u32,
-    globals: Globals,
-    globals_buffer: wgpu::Buffer,
-    accum: wgpu::Buffer,
-    stats: wgpu::Buffer,
-    trace_bind: wgpu::BindGroup,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) globals: Globals,
+    pub(crate) globals_buffer: wgpu::Buffer,
+    pub(crate) accum: wgpu::Buffer,
+    pub(crate) stats: wgpu::Buffer,
+    pub(crate) trace_bind: wgpu::BindGroup,
+    pub(crate) materials: wgpu::Buffer,
+    pub(crate) lights: wgpu::Buffer,
     /// Bytes of geometry, BVH, materials and lights on the device.
     pub scene_bytes: u64,
 }
@@ -166,7 +168,7 @@ impl Renderer {
             self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
                 contents,
-                usage: wgpu::BufferUsages::STORAGE,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             })
         };
         let prims = storage("prims", arrays[0].1);
@@ -203,7 +205,7 @@ impl Renderer {
             entries: &entries,
         });
         let scene_bytes = arrays[..5].iter().map(|(_, b)| b.len() as u64).sum();
-        Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, trace_bind, scene_bytes })
+        Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, trace_bind, materials, lights, scene_bytes })
     }
 
     /// Renders `options.spp` samples per pixel and resolves them, calling
@@ -345,7 +347,7 @@ impl Renderer {
         Ok(Image { width: scene.width, height: scene.height, display, linear })
     }
 
-    fn readback_buffer(&self, size: u64) -> wgpu::Buffer {
+    pub(crate) fn readback_buffer(&self, size: u64) -> wgpu::Buffer {
         self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size,
@@ -355,7 +357,7 @@ impl Renderer {
     }
 
     /// Waits for the queue and copies a mappable buffer's bytes out.
-    fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    pub(crate) fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
         let (tx, rx) = std::sync::mpsc::channel();
         buffer.map_async(wgpu::MapMode::Read, .., move |r| {
             let _ = tx.send(r);
