@@ -34,6 +34,10 @@ pub struct RenderArgs {
     /// little it contributes (as classic benchmark procedures require)
     #[arg(long)]
     no_cutoff: bool,
+    /// How an NFF file's `angle` is read: from the centres of the outer pixel rows
+    /// (the NFF text) or from the image edges (what many exporters write)
+    #[arg(long, value_enum, default_value_t = NffAngleArg::Centers)]
+    nff_angle: NffAngleArg,
     /// Samples per pixel, stratified and jittered (1: through each pixel centre)
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
     spp: u32,
@@ -68,6 +72,12 @@ pub struct RenderArgs {
     /// No progress bar or timing line
     #[arg(short, long)]
     quiet: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum NffAngleArg {
+    Centers,
+    Edges,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -143,7 +153,13 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     // Refuse an unwritable output format before doing any work.
     Format::from_path(&args.output).map_err(|e| Failure::new(exit::USAGE, e))?;
 
-    let mut scene = glint_scene::load(&args.scene).map_err(|e| Failure::new(exit::INPUT, e))?;
+    let load_options = glint_scene::LoadOptions {
+        nff_angle: match args.nff_angle {
+            NffAngleArg::Centers => glint_scene::NffAngle::Centers,
+            NffAngleArg::Edges => glint_scene::NffAngle::Edges,
+        },
+    };
+    let mut scene = glint_scene::load_with(&args.scene, &load_options).map_err(|e| Failure::new(exit::INPUT, e))?;
     for warning in &scene.warnings {
         eprintln!("glint: warning: {warning}");
     }

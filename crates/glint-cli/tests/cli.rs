@@ -108,3 +108,70 @@ fn failed_write_keeps_an_existing_file_untouched() {
     assert_eq!(o.status.code(), Some(3));
     assert_eq!(std::fs::read(&out).unwrap(), b"precious");
 }
+
+#[test]
+fn unwritable_output_fails_with_code_5_and_leaves_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("no/such/dir/out.png");
+    let o = glint(&["render", scenes().join("showcase.toml").to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "16", "--height", "16"]);
+    assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
+    assert!(stderr(&o).contains("out.png"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn aovs_and_float_outputs_are_written_beside_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).display().to_string();
+    let o = glint(&[
+        "render",
+        scenes().join("showcase.toml").to_str().unwrap(),
+        "-o",
+        &p("beauty.exr"),
+        "--width",
+        "32",
+        "--height",
+        "20",
+        "--spp",
+        "2",
+        "--aov",
+        &format!("depth={}", p("depth.pfm")),
+        "--aov",
+        &format!("normal={}", p("normal.exr")),
+        "--aov",
+        &format!("albedo={}", p("albedo.pfm")),
+        "--aov",
+        &format!("id={}", p("id.pfm")),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h, depth) = glint_gpu::read_pfm(&std::fs::read(p("depth.pfm")).unwrap()).unwrap();
+    assert_eq!((w, h), (32, 20));
+    assert_eq!(depth[0][0], f32::INFINITY, "the top-left pixel sees the sky");
+    assert!(depth[(19 * 32 + 16) as usize][0].is_finite(), "the bottom centre sees the floor");
+    let (_, _, ids) = glint_gpu::read_pfm(&std::fs::read(p("id.pfm")).unwrap()).unwrap();
+    assert_eq!(ids[0][0], -1.0);
+    assert!(image::open(p("normal.exr")).is_ok() && image::open(p("beauty.exr")).is_ok());
+    // A bad AOV name is a usage error, before any work.
+    let o = glint(&["render", scenes().join("showcase.toml").to_str().unwrap(), "-o", &p("x.png"), "--aov", "shadow=x.pfm"]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn nff_scenes_render_with_either_angle_reading() {
+    let dir = tempfile::tempdir().unwrap();
+    let nff = dir.path().join("tiny.nff");
+    std::fs::write(&nff, "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 24 24\nb 0 0 0\nl 2 2 5\nf 1 0 0 1 0 0 0 1\ns 0 0 0 1\n").unwrap();
+    let mut centre_pixels = Vec::new();
+    for angle in ["centers", "edges"] {
+        let out = dir.path().join(format!("{angle}.png"));
+        let o = glint(&["render", nff.to_str().unwrap(), "-o", out.to_str().unwrap(), "--nff-angle", angle, "-q"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let img = image::open(&out).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (24, 24));
+        assert!(img.get_pixel(12, 12)[0] > 100, "the red sphere is in the middle");
+        centre_pixels.push(img.pixels().filter(|p| p[0] > 0).count());
+    }
+    // Read edge to edge, the same angle is a narrower view: the sphere looks bigger.
+    assert!(centre_pixels[1] > centre_pixels[0], "{centre_pixels:?}");
+}
