@@ -12,13 +12,18 @@ struct Hit {
     nodes: u32,
 }
 
+// The next float above a positive finite `t`.
+fn next_up(t: f32) -> f32 {
+    return bitcast<f32>(bitcast<u32>(t) + 1u);
+}
+
 // Entry distance of the ray into the box, or MISS.
 fn box_entry(lo: vec3<f32>, hi: vec3<f32>, origin: vec3<f32>, inv_dir: vec3<f32>, t_max: f32) -> f32 {
     let t0 = (lo - origin) * inv_dir;
     let t1 = (hi - origin) * inv_dir;
     let near = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z));
     let far = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
-    return select(MISS, max(near, 0.0), near <= far && far >= 0.0 && near < t_max);
+    return select(MISS, max(near, 0.0), near <= far && far >= 0.0 && near <= t_max);
 }
 
 // Closest hit in (t_min, t_max) when `any_hit` is false. With `any_hit`, a shadow
@@ -41,14 +46,19 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
         if node.count > 0u {
             for (var i = node.left_or_first; i < node.left_or_first + node.count; i++) {
                 let p = prims[i];
-                let t = intersect_prim(p, ray, t_min, t_max);
-                if t == MISS {
+                if !any_hit {
+                    // Equal distances (coincident surfaces) go to the lower object
+                    // id, so the winner does not depend on the order of visits.
+                    let t = intersect_prim(p, ray, t_min, next_up(t_max));
+                    if t != MISS && (t < t_max || (t == t_max && p.object < prims[hit.prim].object)) {
+                        t_max = t;
+                        hit.t = t;
+                        hit.prim = i;
+                    }
                     continue;
                 }
-                if !any_hit {
-                    t_max = t;
-                    hit.t = t;
-                    hit.prim = i;
+                let t = intersect_prim(p, ray, t_min, t_max);
+                if t == MISS {
                     continue;
                 }
                 let m = materials[prim_material(p)];

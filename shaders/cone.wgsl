@@ -3,14 +3,19 @@
 // point P lies on the surface when |q − (q·a)a| = r0 + k(q·a), q = P − B, and
 // 0 ≤ q·a ≤ h.
 
-fn cone_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
+fn cone_intersect(p: GpuPrim, ray: Ray, t_min_in: f32, t_max_in: f32) -> f32 {
     let base = p.a.xyz;
     let r0 = p.a.w;
     let axis_full = p.b.xyz - base;
     let h = length(axis_full);
     let axis = axis_full / h;
     let k = (p.b.w - r0) / h;
-    let oc = ray.origin - base;
+    // Solve from the point of the ray nearest the cone's middle: from a distant
+    // origin the quadratic's discriminant cancels badly in f32.
+    let shift = dot(base + 0.5 * axis_full - ray.origin, ray.dir);
+    let t_min = t_min_in - shift;
+    let t_max = t_max_in - shift;
+    let oc = ray.origin + shift * ray.dir - base;
     let oc_a = dot(oc, axis);
     let d_a = dot(ray.dir, axis);
     let oc_perp = oc - oc_a * axis;
@@ -26,7 +31,7 @@ fn cone_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
             return MISS;
         }
         let t = -qc / (2.0 * qb);
-        return select(MISS, t, cone_accepts(oc_a, d_a, h, r0, k, t, t_min, t_max));
+        return select(MISS, t + shift, cone_accepts(oc_a, d_a, h, r0, k, t, t_min, t_max));
     }
     let disc = qb * qb - qa * qc;
     if disc < 0.0 {
@@ -38,10 +43,10 @@ fn cone_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
     let t0 = min(ta, tb);
     let t1 = max(ta, tb);
     if cone_accepts(oc_a, d_a, h, r0, k, t0, t_min, t_max) {
-        return t0;
+        return t0 + shift;
     }
     if cone_accepts(oc_a, d_a, h, r0, k, t1, t_min, t_max) {
-        return t1;
+        return t1 + shift;
     }
     return MISS;
 }

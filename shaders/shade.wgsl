@@ -23,7 +23,8 @@ fn specular_term(m: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> ve
     } else {
         cos_a = dot(reflect_dir(-l, n), v);
     }
-    let lobe = pow(max(cos_a, 0.0), m.shininess);
+    // pow(0, 0) is undefined in WGSL: a lobe facing away is 0 for every n.
+    let lobe = select(0.0, pow(cos_a, m.shininess), cos_a > 0.0);
     if (m.flags & MATERIAL_METALLIC) != 0u {
         return schlick(m.f0, dot(v, h)) * lobe;
     }

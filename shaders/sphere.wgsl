@@ -5,10 +5,10 @@ fn sphere_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
     let radius = p.a.w;
     let oc = ray.origin - center;
     let b = dot(oc, ray.dir);
-    // c computed as (|oc| − r)(|oc| + r) keeps precision for distant spheres.
-    let len = length(oc);
-    let c = (len - radius) * (len + radius);
-    let disc = b * b - c;
+    // r² − |oc − b·d|², the squared half-chord, rather than b² − (|oc|² − r²):
+    // the same value without cancellation for distant spheres.
+    let perp = oc - b * ray.dir;
+    let disc = radius * radius - dot(perp, perp);
     if disc < 0.0 {
         return MISS;
     }

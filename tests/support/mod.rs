@@ -54,3 +54,18 @@ pub fn assert_close(actual: [f32; 3], expected: [f64; 3], tol: f64, what: &str) 
         );
     }
 }
+
+/// Asserts two images are equal in all but at most `allowed` pixels, reporting
+/// the first differences (not the whole image).
+#[track_caller]
+pub fn assert_images_equal(a: &[[f32; 4]], b: &[[f32; 4]], allowed: usize, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: sizes differ");
+    let differing: Vec<(usize, [f32; 4], [f32; 4])> =
+        a.iter().zip(b).enumerate().filter(|(_, (p, q))| p != q).map(|(i, (p, q))| (i, *p, *q)).collect();
+    assert!(
+        differing.len() <= allowed,
+        "{what}: {} pixels differ (allowed {allowed}); first: {:?}",
+        differing.len(),
+        &differing[..differing.len().min(3)]
+    );
+}

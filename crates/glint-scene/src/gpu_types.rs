@@ -261,7 +261,7 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> GpuScene {
     GpuScene { prims, nodes: bvh.nodes.clone(), materials, lights, points, light_count }
 }
 
-fn pack_material(m: &crate::Material) -> GpuMaterial {
+pub fn pack_material(m: &crate::Material) -> GpuMaterial {
     let mut flags = 0;
     if m.specular_model == SpecularModel::BlinnPhong {
         flags |= MATERIAL_BLINN;
@@ -290,10 +290,10 @@ fn pack_material(m: &crate::Material) -> GpuMaterial {
     }
 }
 
-fn pack_light(l: &crate::Light) -> GpuLight {
+pub fn pack_light(l: &crate::Light) -> GpuLight {
     let (position, kind) = match l.kind {
         LightKind::Point { position } => (position, LIGHT_POINT),
-        LightKind::Directional { direction } => (direction, LIGHT_DIRECTIONAL),
+        LightKind::Directional { direction } => (direction.normalize_or_zero(), LIGHT_DIRECTIONAL),
     };
     let (attenuation, coefficients) = match l.attenuation {
         Attenuation::None => (ATTENUATION_NONE, [0.0; 4]),
