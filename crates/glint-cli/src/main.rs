@@ -1,5 +1,6 @@
 //! `glint`: render scenes on the GPU from the command line.
 
+mod bench;
 mod info;
 mod render;
 
@@ -32,6 +33,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Show the GPU adapter Glint would use and its limits.
     Info,
+    /// Measure BVH build, render times and ray throughput per scene.
+    Bench(bench::BenchArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -67,6 +70,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Info => info::run(),
+        Command::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,172 @@
+//! `glint bench`: build and render times, throughput and ray counts per scene.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use clap::{Args, ValueEnum};
+use glint_gpu::shaders::ShaderSource;
+use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer};
+use glint_scene::gpu_types::View;
+
+use crate::{exit, Failure};
+
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Scene files (default: scenes/bench/*.toml and the classic SPD benchmark
+    /// sizes from $GLINT_SPD_DIR, default ../shared/spd)
+    scenes: Vec<PathBuf>,
+    #[arg(long, default_value_t = 512)]
+    width: u32,
+    #[arg(long, default_value_t = 512)]
+    height: u32,
+    /// Timed frames per measurement, after one warm-up frame; the median is reported
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    frames: u32,
+    /// Acceleration structure to measure (brute force tests every primitive per ray)
+    #[arg(long, value_enum, default_value_t = AccelArg::Bvh)]
+    accel: AccelArg,
+    /// One JSON object per scene per line
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum AccelArg {
+    Bvh,
+    Brute,
+}
+
+/// The classic benchmark sizes of the Standard Procedural Databases.
+const SPD_BENCHMARKS: &[&str] = &[
+    "balls_s4", "gears_s4", "mount_s6", "rings_s7", "teapot_s6", "tetra_s6", "tree_s11", "shells_s5", "lattice_s12",
+    "sombrero_s2", "jacks_s3", "nurbtst_s1",
+];
+
+fn default_scenes() -> Vec<PathBuf> {
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir("scenes/bench")
+        .map(|dir| dir.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "toml")).collect())
+        .unwrap_or_default();
+    scenes.sort();
+    let spd = std::env::var_os("GLINT_SPD_DIR").map_or_else(|| PathBuf::from("../shared/spd"), PathBuf::from);
+    scenes.extend(SPD_BENCHMARKS.iter().map(|name| spd.join(format!("{name}.nff"))).filter(|p| p.is_file()));
+    scenes
+}
+
+struct Measurement {
+    scene: String,
+    prims: usize,
+    bvh_build: Duration,
+    bvh_nodes: usize,
+    gpu_bytes: u64,
+    primary: Duration,
+    whitted: Duration,
+    stats: RayStats,
+    nodes_per_primary_ray: f64,
+}
+
+pub fn run(args: &BenchArgs) -> Result<(), Failure> {
+    let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
+    if scenes.is_empty() {
+        return Err(Failure::new(exit::USAGE, "no scenes to benchmark: name some, or run from the repository root"));
+    }
+    let gpu = Gpu::new()?;
+    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+    let acceleration = match args.accel {
+        AccelArg::Bvh => Acceleration::Bvh,
+        AccelArg::Brute => Acceleration::BruteForce,
+    };
+    if !args.json {
+        eprintln!("{} — {}x{}, median of {} frames", gpu.info().name, args.width, args.height, args.frames);
+        println!(
+            "{:<22} {:>9} {:>9} {:>9} {:>10} {:>9} {:>11} {:>10} {:>11} {:>11} {:>9}",
+            "scene", "prims", "build ms", "nodes", "GPU bytes", "B/prim", "primary ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
+        );
+    }
+    for path in &scenes {
+        let m = measure(&renderer, path, args, acceleration)?;
+        print(&m, args);
+    }
+    Ok(())
+}
+
+fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
+    let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
+    let prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
+    let time = |view: View| -> Result<(Duration, RayStats, glint_gpu::Image), Failure> {
+        let options = RenderOptions { view, view_scale: prepared.view_scale(view), ..RenderOptions::default() };
+        let (mut image, mut stats) = renderer.render(&prepared.buffers, &options, &mut |_, _| {})?;
+        let mut times = Vec::new();
+        for _ in 0..args.frames {
+            let start = Instant::now();
+            (image, stats) = renderer.render(&prepared.buffers, &options, &mut |_, _| {})?;
+            times.push(start.elapsed());
+        }
+        times.sort();
+        Ok((times[times.len() / 2], stats, image))
+    };
+    let (primary, _, _) = time(View::Depth)?;
+    let (whitted, stats, _) = time(View::Shaded)?;
+    let (_, _, heat) = time(View::Heatmap)?;
+    let nodes_per_primary_ray = heat.linear.iter().map(|p| f64::from(p[0])).sum::<f64>() / heat.linear.len() as f64;
+    let Prepared { primitives, bvh_nodes, bvh_build, buffers, .. } = prepared;
+    Ok(Measurement {
+        scene: path.display().to_string(),
+        prims: primitives,
+        bvh_build,
+        bvh_nodes,
+        gpu_bytes: buffers.scene_bytes,
+        primary,
+        whitted,
+        stats,
+        nodes_per_primary_ray,
+    })
+}
+
+fn mrays(rays: u64, time: Duration) -> f64 {
+    rays as f64 / time.as_secs_f64() / 1e6
+}
+
+fn print(m: &Measurement, args: &BenchArgs) {
+    let pixels = u64::from(args.width) * u64::from(args.height);
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    if args.json {
+        let value = serde_json::json!({
+            "scene": m.scene,
+            "width": args.width,
+            "height": args.height,
+            "prims": m.prims,
+            "bvh_build_ms": ms(m.bvh_build),
+            "bvh_nodes": m.bvh_nodes,
+            "gpu_bytes": m.gpu_bytes,
+            "gpu_bytes_per_prim": m.gpu_bytes as f64 / m.prims.max(1) as f64,
+            "primary_ms": ms(m.primary),
+            "render_ms": ms(m.whitted),
+            "primary_mrays_per_s": mrays(pixels, m.primary),
+            "whitted_mrays_per_s": mrays(m.stats.total(), m.whitted),
+            "nodes_per_primary_ray": m.nodes_per_primary_ray,
+            "eye_hit": m.stats.eye_hit,
+            "eye_miss": m.stats.eye_miss,
+            "shadow": m.stats.shadow,
+            "reflect": m.stats.reflect,
+            "refract": m.stats.refract,
+            "rays": m.stats.total(),
+        });
+        println!("{value}");
+    } else {
+        let name = Path::new(&m.scene).file_stem().map_or(m.scene.clone(), |s| s.to_string_lossy().into_owned());
+        println!(
+            "{:<22} {:>9} {:>9.1} {:>9} {:>10} {:>9.1} {:>11.1} {:>10.2} {:>11.1} {:>11.2} {:>9.1}",
+            name,
+            m.prims,
+            ms(m.bvh_build),
+            m.bvh_nodes,
+            m.gpu_bytes,
+            m.gpu_bytes as f64 / m.prims.max(1) as f64,
+            ms(m.primary),
+            mrays(pixels, m.primary),
+            ms(m.whitted),
+            mrays(m.stats.total(), m.whitted),
+            m.nodes_per_primary_ray
+        );
+    }
+}
