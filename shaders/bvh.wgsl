@@ -34,7 +34,10 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     var hit = Hit(MISS, 0u, vec3<f32>(1.0), 1u);
     var t_max = t_max_in;
     let inv_dir = 1.0 / ray.dir;
-    var stack: array<u32, BVH_STACK>;
+    // Pending far children with their entry distances, so a pop needs no
+    // second box test: it is skipped once a closer hit has been found.
+    var stack_node: array<u32, BVH_STACK>;
+    var stack_t: array<f32, BVH_STACK>;
     var top = 0u;
     var index = 0u;
     if box_entry(nodes[0].min, nodes[0].max, ray.origin, inv_dir, t_max) == MISS {
@@ -83,7 +86,8 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
             let t_far = max(t_left, t_right);
             if t_near != MISS {
                 if t_far != MISS {
-                    stack[top] = far;
+                    stack_node[top] = far;
+                    stack_t[top] = t_far;
                     top++;
                 }
                 index = near;
@@ -94,9 +98,8 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
         var found = false;
         while top > 0u {
             top--;
-            let candidate = stack[top];
-            if box_entry(nodes[candidate].min, nodes[candidate].max, ray.origin, inv_dir, t_max) != MISS {
-                index = candidate;
+            if stack_t[top] <= t_max {
+                index = stack_node[top];
                 found = true;
                 break;
             }
