@@ -1,6 +1,7 @@
 //! The render pipeline on the device: upload → dispatch tiles → resolve → read back.
 
 use bytemuck::{Pod, Zeroable};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use glint_scene::gpu_types::{Filter, Globals, GpuScene, View};
@@ -110,6 +111,8 @@ pub struct Renderer {
     pub(crate) queue: wgpu::Queue,
     pub(crate) trace: wgpu::ComputePipeline,
     pub(crate) resolve: wgpu::ComputePipeline,
+    /// Why the device was lost, once it has been.
+    lost: Arc<Mutex<Option<String>>>,
 }
 
 /// A scene uploaded for one image size.
@@ -131,7 +134,12 @@ impl Renderer {
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
         let trace = create_pipeline(&device, source, TRACE_FILES, "trace_main")?;
         let resolve = create_pipeline(&device, source, RESOLVE_FILES, "resolve_main")?;
-        Ok(Self { device, queue, trace, resolve })
+        let lost = Arc::new(Mutex::new(None));
+        let record = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
+        });
+        Ok(Self { device, queue, trace, resolve, lost })
     }
 
     pub fn device(&self) -> &wgpu::Device {
@@ -227,8 +235,12 @@ impl Renderer {
             }
             Ok((self.resolve(scene, options)?, stats))
         })();
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Runtime(e.to_string()));
+        let scoped = pollster::block_on(scope.pop());
+        if let Some(reason) = self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone() {
+            return Err(GpuError::Runtime(format!("the GPU device was lost ({reason})")));
+        }
+        if let Some(e) = scoped {
+            return Err(GpuError::Runtime(one_line(&e)));
         }
         result
     }
@@ -417,7 +429,19 @@ fn create_pipeline(
         cache: None,
     });
     if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Shader(format!("{entry}: {e}")));
+        return Err(GpuError::Shader(format!("{entry}: {}", one_line(&e))));
     }
     Ok(pipeline)
+}
+
+/// An error and its causes on one line (wgpu's own display spans several).
+pub(crate) fn one_line(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
