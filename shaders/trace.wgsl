@@ -54,7 +54,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
 
         // Entering when the ray meets the front of the surface; the outside is air.
         let eta = select(1.0 / m.ior, m.ior, s.backface);
-        var k_reflect = select(vec3<f32>(0.0), m.reflect, (globals.flags & FLAG_REFLECTIONS) != 0u);
+        var k_reflect = m.reflect;
         var k_refract = select(vec3<f32>(0.0), m.transmit, (globals.flags & FLAG_REFRACTIONS) != 0u);
         let refracted = refract_dir(ray.dir, s.shading, eta);
         if any(k_refract > vec3<f32>(0.0)) {
@@ -70,6 +70,11 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
                 k_reflect += k_refract * f;
                 k_refract *= 1.0 - f;
             }
+        }
+        // With reflections off no reflected ray is traced at all, including the
+        // share that total internal reflection or Fresnel moved into it.
+        if (globals.flags & FLAG_REFLECTIONS) == 0u {
+            k_reflect = vec3<f32>(0.0);
         }
         let eps = ray_epsilon(s.point);
         let w_reflect = weight * k_reflect;

@@ -523,3 +523,43 @@ material = "{material}"
         assert_close(image.linear_at(4, 4), expected_factor.to_array(), TOL, &format!("{mode} occluder at y = {occluder_y}"));
     }
 }
+
+/// Switching reflections off stops every reflected ray, also the ones total
+/// internal reflection and Fresnel would send; switching refraction off stops
+/// the transmitted ones.
+#[test]
+fn reflection_and_refraction_switches_stop_their_rays() {
+    let toml = |reflections: bool, refractions: bool| {
+        format!(
+            r#"
+[image]
+width = 16
+height = 16
+[camera]
+eye = [0, 0, 4]
+look_at = [0, 0, 0]
+fov = 40
+[render]
+reflections = {reflections}
+refractions = {refractions}
+[material.glass]
+color = 0
+transmit = 0.9
+ior = 1.5
+fresnel = true
+[[object]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+material = "glass"
+"#
+        )
+    };
+    let (_, all) = render(&parse(&toml(true, true)));
+    assert!(all.reflect > 0 && all.refract > 0, "{all:?}");
+    let (_, no_reflect) = render(&parse(&toml(false, true)));
+    assert_eq!(no_reflect.reflect, 0);
+    assert!(no_reflect.refract > 0);
+    let (_, no_refract) = render(&parse(&toml(true, false)));
+    assert_eq!(no_refract.refract, 0);
+}
