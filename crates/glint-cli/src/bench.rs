@@ -92,21 +92,23 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
 fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
     let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
     let prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
-    let time = |view: View| -> Result<(Duration, RayStats, glint_gpu::Image), Failure> {
-        let options = RenderOptions { view, view_scale: prepared.view_scale(view), ..RenderOptions::default() };
-        let (mut image, mut stats) = renderer.render(&prepared.buffers, &options, &mut |_, _| {})?;
+    // Device time per frame: tracing only, no resolve or read-back.
+    let time = |view: View| -> Result<(Duration, RayStats), Failure> {
+        let options = RenderOptions { view, ..RenderOptions::default() };
+        let mut stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
         let mut times = Vec::new();
         for _ in 0..args.frames {
             let start = Instant::now();
-            (image, stats) = renderer.render(&prepared.buffers, &options, &mut |_, _| {})?;
+            stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
             times.push(start.elapsed());
         }
         times.sort();
-        Ok((times[times.len() / 2], stats, image))
+        Ok((times[times.len() / 2], stats))
     };
-    let (primary, _, _) = time(View::Depth)?;
-    let (whitted, stats, _) = time(View::Shaded)?;
-    let (_, _, heat) = time(View::Heatmap)?;
+    let (primary, _) = time(View::Depth)?;
+    let (whitted, stats) = time(View::Shaded)?;
+    let heat_options = RenderOptions { view: View::Heatmap, ..RenderOptions::default() };
+    let (heat, _) = renderer.render(&prepared.buffers, &heat_options, &mut |_, _| {})?;
     let nodes_per_primary_ray = heat.linear.iter().map(|p| f64::from(p[0])).sum::<f64>() / heat.linear.len() as f64;
     let Prepared { primitives, bvh_nodes, bvh_build, buffers, .. } = prepared;
     Ok(Measurement {

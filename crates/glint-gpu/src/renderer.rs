@@ -1,6 +1,7 @@
 //! The render pipeline on the device: upload → dispatch tiles → resolve → read back.
 
 use bytemuck::{Pod, Zeroable};
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -113,6 +114,9 @@ pub struct Renderer {
     pub(crate) resolve: wgpu::ComputePipeline,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
+    /// Pixels per dispatch that met the time target last time, so the next
+    /// frame starts with bands of the right size.
+    band_pixels: AtomicU32,
 }
 
 /// A scene uploaded for one image size.
@@ -139,7 +143,7 @@ impl Renderer {
         device.set_device_lost_callback(move |reason, message| {
             *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
         });
-        Ok(Self { device, queue, trace, resolve, lost })
+        Ok(Self { device, queue, trace, resolve, lost, band_pixels: AtomicU32::new(8 * 512) })
     }
 
     pub fn device(&self) -> &wgpu::Device {
@@ -226,13 +230,7 @@ impl Renderer {
     ) -> Result<(Image, RayStats), GpuError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = (|| {
-            self.clear(scene);
-            let mut stats = RayStats::default();
-            let total = u64::from(options.spp) * u64::from(scene.height);
-            for sample in 0..options.spp {
-                let done = u64::from(sample) * u64::from(scene.height);
-                stats = stats + self.trace_sample(scene, sample, options, &mut |rows| progress(done + rows, total))?;
-            }
+            let stats = self.trace_frame(scene, options, progress)?;
             Ok((self.resolve(scene, options)?, stats))
         })();
         let scoped = pollster::block_on(scope.pop());
@@ -243,6 +241,24 @@ impl Renderer {
             return Err(GpuError::Runtime(one_line(&e)));
         }
         result
+    }
+
+    /// Accumulates `options.spp` samples per pixel from scratch, without
+    /// resolving: what a frame costs on the device.
+    pub fn trace_frame(
+        &self,
+        scene: &SceneBuffers,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u64, u64),
+    ) -> Result<RayStats, GpuError> {
+        self.clear(scene);
+        let mut stats = RayStats::default();
+        let total = u64::from(options.spp) * u64::from(scene.height);
+        for sample in 0..options.spp {
+            let done = u64::from(sample) * u64::from(scene.height);
+            stats = stats + self.trace_sample(scene, sample, options, &mut |rows| progress(done + rows, total))?;
+        }
+        Ok(stats)
     }
 
     /// Empties the accumulation buffer (a progressive render starts over).
@@ -264,7 +280,8 @@ impl Renderer {
         let (width, height) = (scene.width, scene.height);
         let stats_readback = self.readback_buffer(STAT_COUNT * 4);
         let mut stats = RayStats::default();
-        let mut rows = options.band_rows.unwrap_or(8).clamp(1, height);
+        let adaptive_rows = (self.band_pixels.load(Ordering::Relaxed) / width).max(8);
+        let mut rows = options.band_rows.unwrap_or(adaptive_rows).clamp(1, height);
         let mut y = 0;
         while y < height {
             let band = rows.min(height - y);
@@ -295,6 +312,7 @@ impl Renderer {
             progress(u64::from(y));
             if options.band_rows.is_none() {
                 rows = next_band_rows(rows, start.elapsed());
+                self.band_pixels.store(rows.saturating_mul(width), Ordering::Relaxed);
             }
         }
         Ok(stats)
