@@ -3,7 +3,7 @@
 
 use std::mem::{offset_of, size_of};
 
-use glint_gpu::shaders::{ShaderSource, RESOLVE_FILES, TRACE_FILES};
+use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
 use glint_scene::bvh::Node;
 use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals};
 
@@ -13,7 +13,7 @@ fn trace_module() -> naga::Module {
 
 #[test]
 fn every_kernel_validates() {
-    for files in [TRACE_FILES, RESOLVE_FILES] {
+    for files in [TRACE_FILES, RESOLVE_FILES, PRESENT_FILES] {
         let composed = ShaderSource::Embedded.compose(files).unwrap();
         if let Err(e) = composed.validate() {
             panic!("{e}");
@@ -27,7 +27,7 @@ fn every_shader_file_is_part_of_a_kernel() {
     for entry in std::fs::read_dir(&dir).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();
         assert!(
-            TRACE_FILES.contains(&name.as_str()) || RESOLVE_FILES.contains(&name.as_str()),
+            [TRACE_FILES, RESOLVE_FILES, PRESENT_FILES].iter().any(|files| files.contains(&name.as_str())),
             "shaders/{name} is in no kernel"
         );
     }

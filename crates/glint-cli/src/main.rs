@@ -3,6 +3,7 @@
 mod bench;
 mod info;
 mod render;
+mod view;
 
 use std::process::ExitCode;
 
@@ -35,6 +36,8 @@ enum Command {
     Info,
     /// Measure BVH build, render times and ray throughput per scene.
     Bench(bench::BenchArgs),
+    /// Open a scene in the interactive viewer.
+    View(view::ViewArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -71,6 +74,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Info => info::run(),
         Command::Bench(args) => bench::run(&args),
+        Command::View(args) => view::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,6 +4,7 @@
 
 pub mod device;
 pub mod frame;
+pub mod interactive;
 pub mod output;
 pub mod renderer;
 pub mod shaders;

@@ -32,6 +32,9 @@ pub const TRACE_FILES: &[&str] = &[
 /// The files of the resolve kernel (accumulated samples → display values).
 pub const RESOLVE_FILES: &[&str] = &["resolve.wgsl"];
 
+/// The files of the viewer's present kernel: the resolve, written into a texture.
+pub const PRESENT_FILES: &[&str] = &["resolve.wgsl", "present.wgsl"];
+
 macro_rules! embed {
     ($($name:literal),* $(,)?) => {
         &[$(($name, include_str!(concat!("../../../shaders/", $name)))),*]
@@ -55,6 +58,7 @@ const EMBEDDED: &[(&str, &str)] = embed!(
     "shade.wgsl",
     "trace.wgsl",
     "resolve.wgsl",
+    "present.wgsl",
 );
 
 /// Where the WGSL files come from.

@@ -363,7 +363,7 @@ impl<'a> Tracer<'a> {
         if depth < r.max_depth {
             let ior = f64::from(m.ior);
             let eta = if hit.backface { ior } else { 1.0 / ior };
-            let mut kr = if r.reflections { d3(m.reflect) } else { DVec3::ZERO };
+            let mut kr = d3(m.reflect);
             let mut kt = if r.refractions { d3(m.transmit) } else { DVec3::ZERO };
             let n = hit.shading;
             let refracted = refract(dir, n, eta);
@@ -384,6 +384,10 @@ impl<'a> Tracer<'a> {
                     }
                     Some(_) => {}
                 }
+            }
+            // Reflections off: no reflected ray at all, TIR and Fresnel shares included.
+            if !r.reflections {
+                kr = DVec3::ZERO;
             }
             let eps = ray_epsilon(hit.point);
             let wr = weight * so * kr;

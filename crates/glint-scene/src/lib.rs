@@ -6,6 +6,7 @@ pub mod bvh;
 pub mod camera;
 pub mod error;
 pub mod gpu_types;
+pub mod icosphere;
 pub mod light;
 pub mod material;
 pub mod nff;
@@ -13,6 +14,7 @@ pub mod obj;
 pub mod scene;
 pub mod shape;
 pub mod toml_scene;
+pub mod toml_write;
 
 pub use camera::{Camera, Projection};
 pub use error::{LoadError, Location};
@@ -23,6 +25,69 @@ pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode};
 pub use shape::Shape;
 
 use std::path::Path;
+
+use glam::Vec3;
+
+/// Why [`read_text`] failed.
+#[derive(Debug)]
+pub(crate) enum ReadError {
+    /// The file could not be read at all; the caller says where it was named.
+    Io(std::io::Error),
+    /// The file is not UTF-8 text: an error at the first bad byte.
+    NotText(LoadError),
+}
+
+/// Reads a scene file, or a file a scene names, as text. Bytes that are not
+/// UTF-8 (a binary file, a file in another encoding) are a malformed file, and
+/// the error names the line and column where the text stops being UTF-8.
+pub(crate) fn read_text(path: &Path) -> Result<String, ReadError> {
+    let bytes = std::fs::read(path).map_err(ReadError::Io)?;
+    String::from_utf8(bytes).map_err(|e| {
+        let valid = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        // The prefix is valid UTF-8 by definition.
+        let before = std::str::from_utf8(&bytes[..valid]).unwrap_or_default();
+        let location = Location::of_offset(before, valid);
+        ReadError::NotText(LoadError::new(
+            path,
+            Some(location),
+            format!("not a text file: byte 0x{:02x} is not UTF-8", bytes[valid]),
+        ))
+    })
+}
+
+/// Whether the camera's eye and look-at point are so far apart that the view
+/// direction overflows 32-bit floats (its basis would be NaN).
+pub(crate) fn view_overflows(camera: &Camera) -> bool {
+    !(camera.eye - camera.look_at).is_finite()
+}
+
+/// Whether the shape's bounding box is finite: a shape whose extent overflows
+/// 32-bit floats cannot be placed in the BVH or intersected.
+pub(crate) fn bounds_are_finite(shape: &Shape) -> bool {
+    let (lo, hi) = shape.bounds();
+    lo.is_finite() && hi.is_finite()
+}
+
+/// `v` scaled to unit length, or `None` for a zero vector. Computed in f64:
+/// in f32 the length of (3e38, 0, 0) overflows and that of (1e-30, 0, 0)
+/// underflows, and normalising either gives a zero vector.
+pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
+    let d = v.as_dvec3();
+    let length = d.length();
+    (length > 0.0 && length.is_finite()).then(|| (d / length).as_vec3())
+}
+
+/// A token of a scene file as it appears in a message: control characters
+/// escaped, and cut short when long.
+pub(crate) fn quoted(text: &str) -> String {
+    const MAX: usize = 40;
+    let mut shown = error::escape_controls(&text.chars().take(MAX).collect::<String>());
+    if text.chars().nth(MAX).is_some() {
+        shown.push('…');
+    }
+    format!("`{shown}`")
+}
 
 /// Options for [`load_with`] that only some formats read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

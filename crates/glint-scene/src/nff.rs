@@ -27,6 +27,7 @@ use std::path::Path;
 
 use glam::Vec3;
 
+use crate::quoted;
 use crate::shape::{polygon_non_planarity, polygon_normal};
 use crate::toml_scene::MAX_IMAGE_SIDE;
 use crate::{
@@ -117,8 +118,10 @@ pub fn material(name: String, color: Vec3, kd: f32, ks: f32, shine: f32, t: f32,
 
 /// Reads an NFF file into a scene.
 pub fn load(path: &Path, options: &NffOptions) -> Result<Scene, LoadError> {
-    let source = std::fs::read_to_string(path)
-        .map_err(|e| LoadError::new(path, None, format!("cannot read NFF file: {e}")))?;
+    let source = crate::read_text(path).map_err(|e| match e {
+        crate::ReadError::Io(e) => LoadError::new(path, None, format!("cannot read NFF file: {e}")),
+        crate::ReadError::NotText(e) => e,
+    })?;
     parse(&source, path, options)
 }
 
@@ -126,7 +129,13 @@ pub fn load(path: &Path, options: &NffOptions) -> Result<Scene, LoadError> {
 pub fn parse(source: &str, path: &Path, options: &NffOptions) -> Result<Scene, LoadError> {
     let contents = parse_contents(source, path, options)?;
     let Some(view) = contents.view else {
-        return Err(LoadError::new(path, None, "no viewpoint: an NFF scene needs a `v` block"));
+        // Named at the end of the file, where the reader gave up looking.
+        let last_line = source.lines().count().max(1);
+        return Err(LoadError::new(
+            path,
+            Some(Location::line(last_line)),
+            "no viewpoint: an NFF scene needs a `v` block (none found by the end of the file)",
+        ));
     };
     Ok(Scene {
         width: view.width,
@@ -278,7 +287,7 @@ impl<'a> Parser<'a> {
 
     fn statement_name(&self) -> String {
         match &self.statement {
-            Some(t) => format!("`{}` (line {})", t.text, t.line),
+            Some(t) => format!("{} (line {})", quoted(t.text), t.line),
             None => "the file".into(),
         }
     }
@@ -309,10 +318,10 @@ impl<'a> Parser<'a> {
         let t = self.expect(what)?;
         match t.text.parse::<f32>() {
             Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(self.error(&t, format!("{what}: `{}` is not a finite number", t.text))),
+            Ok(_) => Err(self.error(&t, format!("{what}: {} is not a finite number", quoted(t.text)))),
             Err(_) => Err(self.error(
                 &t,
-                format!("expected a number ({what}) for {}, found `{}`", self.statement_name(), t.text),
+                format!("expected a number ({what}) for {}, found {}", self.statement_name(), quoted(t.text)),
             )),
         }
     }
@@ -347,7 +356,7 @@ impl<'a> Parser<'a> {
     fn count(&mut self, what: &str, min: usize) -> Result<usize, LoadError> {
         let t = self.expect(what)?;
         let n: usize = t.text.parse().map_err(|_| {
-            self.error(&t, format!("expected a whole number ({what}) for {}, found `{}`", self.statement_name(), t.text))
+            self.error(&t, format!("expected a whole number ({what}) for {}, found {}", self.statement_name(), quoted(t.text)))
         })?;
         if n < min {
             return Err(self.error(&t, format!("{what}: needs at least {min}, found {n}")));
@@ -360,9 +369,9 @@ impl<'a> Parser<'a> {
             self.pos += 1;
             if !KEYWORDS.contains(&t.text) {
                 let message = if t.text.parse::<f64>().is_ok() {
-                    format!("unexpected number `{}`: too many values for {}", t.text, self.statement_name())
+                    format!("unexpected number {}: too many values for {}", quoted(t.text), self.statement_name())
                 } else {
-                    format!("unknown keyword `{}`", t.text)
+                    format!("unknown keyword {}", quoted(t.text))
                 };
                 return Err(self.error(&t, message));
             }
@@ -422,7 +431,7 @@ impl<'a> Parser<'a> {
                     let side = |parser: &mut Self, what: &str| -> Result<u32, LoadError> {
                         let tok = parser.expect(what)?;
                         tok.text.parse::<u32>().ok().filter(|s| (1..=MAX_IMAGE_SIDE).contains(s)).ok_or_else(|| {
-                            parser.error(&tok, format!("resolution: {what} `{}` is not a whole number in 1..={MAX_IMAGE_SIDE}", tok.text))
+                            parser.error(&tok, format!("resolution: {what} {} is not a whole number in 1..={MAX_IMAGE_SIDE}", quoted(tok.text)))
                         })
                     };
                     let w = side(self, "width")?;
@@ -442,6 +451,9 @@ impl<'a> Parser<'a> {
             self.error(&angle_token, "angle: a one-row image has no distance between its top and bottom pixel centres (read the angle edge to edge instead)")
         })?;
         let camera = Camera { eye: from, look_at: at, up, projection: Projection::Perspective { fov_y_degrees: fov as f32 } };
+        if crate::view_overflows(&camera) {
+            return Err(self.error(&v, "`from` and `at` are too far apart (the view direction overflows 32-bit floats)"));
+        }
         if camera.basis().is_none() {
             return Err(self.error(&v, "`up` is parallel to the view direction (or `from` equals `at`)"));
         }
@@ -484,7 +496,11 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    fn push(&mut self, shapes: Vec<Shape>) {
+    /// Adds the primitive `keyword` stands for, made of `shapes`.
+    fn push(&mut self, keyword: &Token, shapes: Vec<Shape>) -> Result<(), LoadError> {
+        if !shapes.iter().all(crate::bounds_are_finite) {
+            return Err(self.error(keyword, format!("the `{}` reaches beyond the range of 32-bit floats", keyword.text)));
+        }
         let material = match self.current_material {
             Some(m) => m,
             None => {
@@ -495,6 +511,7 @@ impl<'a> Parser<'a> {
             }
         };
         self.contents.objects.push(Object { material, shapes });
+        Ok(())
     }
 
     fn sphere(&mut self, s: Token<'a>) -> Result<(), LoadError> {
@@ -504,8 +521,7 @@ impl<'a> Parser<'a> {
             self.warn(&s, "sphere of radius 0 skipped");
             return Ok(());
         }
-        self.push(vec![Shape::Sphere { center, radius }]);
-        Ok(())
+        self.push(&s, vec![Shape::Sphere { center, radius }])
     }
 
     fn cone(&mut self, c: Token<'a>) -> Result<(), LoadError> {
@@ -522,8 +538,7 @@ impl<'a> Parser<'a> {
             std::mem::swap(&mut base, &mut apex);
             std::mem::swap(&mut base_radius, &mut apex_radius);
         }
-        self.push(vec![Shape::Cone { base, base_radius, apex, apex_radius }]);
-        Ok(())
+        self.push(&c, vec![Shape::Cone { base, base_radius, apex, apex_radius }])
     }
 
     fn polygon(&mut self, p: Token<'a>) -> Result<(), LoadError> {
@@ -540,8 +555,7 @@ impl<'a> Parser<'a> {
         if deviation > NON_PLANAR_TOLERANCE {
             self.warn(&p, format!("polygon is not planar (its vertices leave the plane by {deviation:.2e} of its size); kept"));
         }
-        self.push(vec![Shape::Polygon { vertices }]);
-        Ok(())
+        self.push(&p, vec![Shape::Polygon { vertices }])
     }
 
     fn patch(&mut self, pp: Token<'a>) -> Result<(), LoadError> {
@@ -556,11 +570,12 @@ impl<'a> Parser<'a> {
             self.warn(&pp, format!("degenerate patch ({n} vertices, no area) skipped"));
             return Ok(());
         }
-        let smooth = normals.iter().all(|n| n.length() > 0.0);
+        let units: Option<Vec<Vec3>> = normals.iter().map(|n| crate::unit(*n)).collect();
+        let smooth = units.is_some();
         if !smooth {
             self.warn(&pp, "patch has a zero-length vertex normal; shaded flat");
         }
-        let normals: Vec<Vec3> = normals.iter().map(|n| n.normalize_or_zero()).collect();
+        let normals = units.unwrap_or_default();
         let mut shapes = Vec::with_capacity(n - 2);
         for i in 1..n - 1 {
             let tri = [vertices[0], vertices[i], vertices[i + 1]];
@@ -571,8 +586,12 @@ impl<'a> Parser<'a> {
             let normals = smooth.then(|| [normals[0], normals[i], normals[i + 1]]);
             shapes.push(Shape::Triangle { vertices: tri, normals });
         }
-        self.push(shapes);
-        Ok(())
+        if shapes.is_empty() {
+            // Only possible at the edge of the area test: the whole has an area, no fan triangle has.
+            self.warn(&pp, format!("degenerate patch ({n} vertices, no triangle with an area) skipped"));
+            return Ok(());
+        }
+        self.push(&pp, shapes)
     }
 }
 
@@ -729,6 +748,15 @@ mod tests {
     }
 
     #[test]
+    fn patch_normals_of_any_finite_size_normalise() {
+        // In f32, (3e38, 0, 0) has an infinite length and (1e-30, 0, 0) a zero one.
+        let s = parse_str("pp 3\n0 0 0 3e38 0 0\n0 0 -7 1e-30 0 0\n0 8 0 0 0 1\n").unwrap();
+        let Shape::Triangle { normals: Some(n), .. } = only_shape(&s) else { panic!("{s:?}") };
+        assert_eq!(*n, [Vec3::X, Vec3::X, Vec3::Z]);
+        assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    }
+
+    #[test]
     fn comments_are_skipped() {
         let s = parse(
             "# a scene\nv # the view\nfrom 0 0 5 at 0 0 0 up 0 1 0 angle 45 resolution 8 8\n# s 0 0 0 1\ns 0 0 0 1 # trailing\n#s 1 1 1 1",
@@ -789,10 +817,32 @@ mod tests {
     }
 
     #[test]
+    fn values_beyond_f32_and_odd_tokens() {
+        for (body, at, needle) in [
+            ("s 3e38 0 0 3e38\n", "t.nff:8:1:", "beyond the range of 32-bit floats"),
+            ("c 3e38 0 0 3e38 3e38 1 0 3e38\n", "t.nff:8:1:", "beyond the range of 32-bit floats"),
+            ("\u{1b}[2J 0 0 0 1\n", "t.nff:8:1:", "unknown keyword `\\u{1b}[2J`"),
+            ("s 0 0 0 1 2xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\n", "t.nff:8:11:", "xxx…`"),
+        ] {
+            let e = error(body);
+            assert!(e.starts_with(at) && e.contains(needle), "{body:?}: {e}");
+            assert_eq!(e.lines().count(), 1, "{e}");
+        }
+        let e = parse("v from 0 0 3e38 at 0 0 -3e38 up 0 1 0 angle 45 resolution 8 8", Path::new("f.nff"), &NffOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("f.nff:1:1:") && e.contains("too far apart"), "{e}");
+    }
+
+    #[test]
     fn bad_view_blocks() {
         let p = |src: &str| parse(src, Path::new("v.nff"), &NffOptions::default()).unwrap_err().to_string();
         let e = p("s 0 0 0 1\n");
-        assert!(e.starts_with("v.nff: ") && e.contains("`v`"), "{e}");
+        assert!(e.starts_with("v.nff:1: ") && e.contains("`v`"), "{e}");
+        let e = p("s 0 0 0 1\n# no view\n\n");
+        assert!(e.starts_with("v.nff:3: ") && e.contains("no viewpoint"), "{e}");
+        let e = p("");
+        assert!(e.starts_with("v.nff:1: ") && e.contains("no viewpoint"), "{e}");
         let e = p("v\nfrom 0 0 5\nat 0 0 0\nangle 45\nresolution 8 8\n");
         assert!(e.starts_with("v.nff:1:1:") && e.contains("no `up`"), "{e}");
         let e = p("v\nfrom 0 0 5\nat 0 0 0\nup 0 0 1\nangle 45\nresolution 8 8\n");

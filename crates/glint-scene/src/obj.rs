@@ -33,6 +33,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
+use crate::quoted;
 use crate::shape::polygon_normal;
 use crate::{
     Attenuation, Camera, Light, LightKind, LoadError, Location, Material, Object, Projection,
@@ -92,17 +93,23 @@ fn load_options() -> tobj::LoadOptions {
 
 /// Reads an OBJ file (and the MTL files it names, relative to it) into a mesh.
 pub fn load_mesh(path: &Path) -> Result<Mesh, LoadError> {
-    let source = std::fs::read_to_string(path)
-        .map_err(|e| LoadError::new(path, None, format!("cannot read OBJ file: {e}")))?;
-    parse_mesh(&source, path)
+    parse_mesh(&read_obj(path)?, path)
+}
+
+fn read_obj(path: &Path) -> Result<String, LoadError> {
+    crate::read_text(path).map_err(|e| match e {
+        crate::ReadError::Io(e) => LoadError::new(path, None, format!("cannot read OBJ file: {e}")),
+        crate::ReadError::NotText(e) => e,
+    })
 }
 
 /// Parses OBJ text; `path` names the file in errors and locates MTL files.
 pub fn parse_mesh(source: &str, path: &Path) -> Result<Mesh, LoadError> {
     let at_line = |line: usize, message: String| LoadError::new(path, Some(Location::line(line)), message);
-    if let Some((line, token)) = non_finite_value(source, &["v", "vn"]) {
-        return Err(at_line(line, format!("`{token}` is not a finite number")));
-    }
+    // tobj accepts NaN and infinities, divides by a `w` of 1e-40, skips faces
+    // of fewer than 3 vertices and reports other problems without a place, so
+    // the statements Glint reads are checked here first.
+    check_obj(source).map_err(|(line, message)| at_line(line, format!("malformed OBJ: {message}")))?;
     // tobj hands the material loader only the name, so remember where each
     // `mtllib` and `usemtl` stands for the warnings.
     let mut mtllibs = Vec::new();
@@ -122,9 +129,13 @@ pub fn parse_mesh(source: &str, path: &Path) -> Result<Mesh, LoadError> {
     let loader = |name: &Path| -> tobj::MTLLoadResult {
         let full = dir.join(name);
         let line = mtllibs.iter().find(|(_, n)| Path::new(n) == name).map(|(l, _)| Location::line(*l));
-        let text = match std::fs::read_to_string(&full) {
+        let text = match crate::read_text(&full) {
             Ok(text) => text,
-            Err(e) => {
+            Err(crate::ReadError::NotText(e)) => {
+                fatal.borrow_mut().get_or_insert(e);
+                return Err(tobj::LoadError::MaterialParseError);
+            }
+            Err(crate::ReadError::Io(e)) => {
                 warnings.borrow_mut().push(LoadError::new(
                     path,
                     line,
@@ -134,10 +145,13 @@ pub fn parse_mesh(source: &str, path: &Path) -> Result<Mesh, LoadError> {
             }
         };
         let mtl_error = |line: Option<usize>, message: String| LoadError::new(&full, line.map(Location::line), message);
-        if let Some((line, token)) = non_finite_value(&text, &["Ka", "Kd", "Ks", "Ke", "Ns", "Ni", "d", "Tr", "Tf"]) {
-            fatal.borrow_mut().get_or_insert(mtl_error(Some(line), format!("`{token}` is not a finite number")));
-            return Err(tobj::LoadError::MaterialParseError);
-        }
+        let text = match check_mtl(&text) {
+            Ok(text) => text,
+            Err((line, message)) => {
+                fatal.borrow_mut().get_or_insert(mtl_error(Some(line), format!("malformed MTL: {message}")));
+                return Err(tobj::LoadError::MaterialParseError);
+            }
+        };
         tobj::load_mtl_buf(&mut text.as_bytes()).inspect_err(|e| {
             let line = first_failing_line(&text, |prefix| tobj::load_mtl_buf(&mut prefix.as_bytes()).is_err());
             fatal.borrow_mut().get_or_insert(mtl_error(line, format!("malformed MTL: {e}")));
@@ -202,11 +216,12 @@ pub fn parse_mesh(source: &str, path: &Path) -> Result<Mesh, LoadError> {
                 continue;
             }
             let normals = has_normals.then(|| [normal(tri[0]), normal(tri[1]), normal(tri[2])]).and_then(|n| {
-                let ok = n.iter().all(|v| v.is_finite() && v.length() > 0.0);
+                let units = n.map(crate::unit);
+                let ok = units.iter().all(Option::is_some);
                 if !ok {
                     flat += 1;
                 }
-                ok.then(|| n.map(Vec3::normalize))
+                ok.then(|| units.map(|u| u.expect("checked")))
             });
             triangles.push(Shape::Triangle { vertices, normals });
         }
@@ -229,17 +244,154 @@ pub fn parse_mesh(source: &str, path: &Path) -> Result<Mesh, LoadError> {
     Ok(Mesh { path: path.to_path_buf(), materials, parts, warnings })
 }
 
-/// The first line whose keyword is in `keys` and that holds a number that is
-/// NaN or infinite (which `tobj` accepts), with that token.
-fn non_finite_value<'a>(text: &'a str, keys: &[&str]) -> Option<(usize, &'a str)> {
-    text.lines().enumerate().find_map(|(i, line)| {
+/// A problem found by [`check_obj`] or [`check_mtl`]: the 1-based line and
+/// what is wrong.
+type LineError = (usize, String);
+
+/// A finite 32-bit number (what `tobj` stores), or what is wrong with `word`.
+fn finite_value(word: &str, what: &str) -> Result<f32, String> {
+    match word.parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(format!("{what}: {} is not a finite number", quoted(word))),
+        Err(_) => Err(format!("{what}: {} is not a number", quoted(word))),
+    }
+}
+
+/// Checks the OBJ statements Glint reads (`v`, `vt`, `vn`, `f`, `l`): their
+/// value counts, that numbers are finite, that `v`'s `w` leaves the position
+/// finite, that a face has at least 3 vertices and that every index names an
+/// element defined before it (negative indices count back from the last).
+fn check_obj(source: &str) -> Result<(), LineError> {
+    let (mut positions, mut texcoords, mut normals) = (0usize, 0usize, 0usize);
+    for (i, line) in source.lines().enumerate() {
+        let at = |message: String| (i + 1, message);
         let mut words = line.split_whitespace();
-        let key = words.next()?;
-        if !keys.contains(&key) {
-            return None;
+        let Some(key) = words.next() else { continue };
+        let values: Vec<&str> = words.collect();
+        match key {
+            "v" => {
+                if !matches!(values.len(), 3 | 4 | 6) {
+                    return Err(at(format!(
+                        "vertex position: `v` takes x y z, then w or r g b; found {} value(s)",
+                        values.len()
+                    )));
+                }
+                let numbers = values
+                    .iter()
+                    .map(|w| finite_value(w, "vertex position"))
+                    .collect::<Result<Vec<f32>, _>>()
+                    .map_err(at)?;
+                if let [x, y, z, w] = numbers[..]
+                    && (w == 0.0 || !(Vec3::new(x, y, z) / w).is_finite())
+                {
+                    let w = quoted(values[3]);
+                    return Err(at(format!("vertex position: w = {w} takes the vertex beyond the range of 32-bit floats")));
+                }
+                positions += 1;
+            }
+            "vt" => {
+                if !matches!(values.len(), 2 | 3) {
+                    return Err(at(format!("texture coordinate: `vt` takes u v [w]; found {} value(s)", values.len())));
+                }
+                values.iter().try_for_each(|w| finite_value(w, "texture coordinate").map(drop)).map_err(at)?;
+                texcoords += 1;
+            }
+            "vn" => {
+                if values.len() != 3 {
+                    return Err(at(format!("vertex normal: `vn` takes x y z; found {} value(s)", values.len())));
+                }
+                values.iter().try_for_each(|w| finite_value(w, "vertex normal").map(drop)).map_err(at)?;
+                normals += 1;
+            }
+            "f" | "l" => {
+                let (min, what) = if key == "f" { (3, "a face") } else { (2, "a line") };
+                if values.len() < min {
+                    return Err(at(format!("{what} needs at least {min} vertices, found {}", values.len())));
+                }
+                for word in &values {
+                    check_vertex_reference(word, [positions, texcoords, normals]).map_err(at)?;
+                }
+            }
+            _ => {}
         }
-        words.find(|w| w.parse::<f64>().is_ok_and(|v| !v.is_finite())).map(|w| (i + 1, w))
-    })
+    }
+    Ok(())
+}
+
+/// Checks one vertex of a face, `v`, `v/vt`, `v//vn` or `v/vt/vn`, against the
+/// numbers of positions, texture coordinates and normals defined so far.
+fn check_vertex_reference(word: &str, defined: [usize; 3]) -> Result<(), String> {
+    let parts: Vec<&str> = word.split('/').collect();
+    if parts.len() > 3 || parts[0].is_empty() {
+        return Err(format!("{} is not a vertex reference (v, v/vt, v//vn or v/vt/vn)", quoted(word)));
+    }
+    let names = [("vertex", "vertices"), ("texture coordinate", "texture coordinates"), ("normal", "normals")];
+    for ((part, count), (name, names)) in parts.iter().zip(defined).zip(names) {
+        if part.is_empty() {
+            continue;
+        }
+        let index: i64 = part
+            .parse()
+            .map_err(|_| format!("{} is not a vertex reference: {} is not a whole number", quoted(word), quoted(part)))?;
+        if index == 0 {
+            return Err(format!("{} refers to {name} 0, but OBJ counts from 1", quoted(word)));
+        }
+        let count = count as i64;
+        if index.unsigned_abs() > count.unsigned_abs() {
+            let counted = match count {
+                0 => format!("no {names} are"),
+                1 => format!("only 1 {name} is"),
+                n => format!("only {n} {names} are"),
+            };
+            return Err(format!("{} refers to {name} {index}, but {counted} defined before it", quoted(word)));
+        }
+    }
+    Ok(())
+}
+
+/// Checks the MTL statements Glint reads and returns the text `tobj` should
+/// parse: colours (`Ka`, `Kd`, `Ks`, `Ke`, `Tf`) take r g b or one grey value
+/// (which `tobj` cannot read, so it is written out as three), `Ns`, `Ni`, `d`
+/// and `Tr` one number, and every number must be finite.
+fn check_mtl(text: &str) -> Result<std::borrow::Cow<'_, str>, LineError> {
+    let mut rewritten: Option<String> = None;
+    for (i, line) in text.lines().enumerate() {
+        let at = |message: String| (i + 1, message);
+        let mut words = line.split_whitespace();
+        let Some(key) = words.next() else { continue };
+        let values: Vec<&str> = words.collect();
+        match key {
+            "Ka" | "Kd" | "Ks" | "Ke" | "Tf" => {
+                if !matches!(values.len(), 1 | 3) {
+                    return Err(at(format!("`{key}` takes r g b or one grey value; found {} value(s)", values.len())));
+                }
+                values.iter().try_for_each(|w| finite_value(w, key).map(drop)).map_err(at)?;
+                if values.len() == 1 && key != "Tf" {
+                    let out = rewritten.get_or_insert_with(|| {
+                        text.lines().take(i).fold(String::with_capacity(text.len() + 16), |mut s, l| {
+                            s.push_str(l);
+                            s.push('\n');
+                            s
+                        })
+                    });
+                    out.push_str(&format!("{key} {0} {0} {0}\n", values[0]));
+                    continue;
+                }
+            }
+            "Ns" | "Ni" | "d" | "Tr" => {
+                if values.len() != 1 {
+                    return Err(at(format!("`{key}` takes one number; found {} value(s)", values.len())));
+                }
+                finite_value(values[0], key).map_err(at)?;
+            }
+            _ => {}
+        }
+        if let Some(out) = rewritten.as_mut() {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    Ok(rewritten.map_or(std::borrow::Cow::Borrowed(text), std::borrow::Cow::Owned))
 }
 
 /// The 1-based line at which `fails` first fails on a prefix of `text` (whole
@@ -323,9 +475,16 @@ pub fn material_from_mtl(m: &tobj::Material) -> Material {
 /// light I_a = 1 (with the MTL materials' k_a = 0.1 that is a tenth of each
 /// colour); a dark grey background; [`DEFAULT_WIDTH`] × [`DEFAULT_HEIGHT`] pixels.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    let mesh = load_mesh(path)?;
+    let source = read_obj(path)?;
+    let mesh = parse_mesh(&source, path)?;
     let Some((lo, hi)) = mesh.bounds() else {
-        return Err(LoadError::new(path, None, "the OBJ file has no faces to render"));
+        // Named at the end of the file, where the reader gave up looking.
+        let last_line = source.lines().count().max(1);
+        return Err(LoadError::new(
+            path,
+            Some(Location::line(last_line)),
+            "the OBJ file has no faces to render (none with an area by the end of the file)",
+        ));
     };
     let center = (lo + hi) / 2.0;
     let radius = ((hi - lo).length() / 2.0).max(1e-6);
@@ -526,6 +685,89 @@ illum 7
         assert!(e.contains("bad.mtl:3: ") && e.contains("malformed MTL"), "{e}");
         let e = load(&write(dir.path(), "empty.obj", "v 0 0 0\n")).unwrap_err().to_string();
         assert!(e.contains("no faces"), "{e}");
+    }
+
+    #[test]
+    fn statements_are_checked_before_tobj_sees_them() {
+        let dir = tempfile::tempdir().unwrap();
+        const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        for (body, line, needle) in [
+            ("v 1 0\n", 4, "found 2 value(s)"),
+            ("v 1 0 0 1 1\n", 4, "found 5 value(s)"),
+            ("v 1 0 0 0\n", 4, "w = `0`"),
+            ("v 1 0 0 1e-40\n", 4, "range of 32-bit floats"),
+            ("v 1e39 0 0\n", 4, "`1e39` is not a finite number"),
+            ("vn 0 1\n", 4, "`vn` takes x y z"),
+            ("vt 0.5 0.5 0.5 0.5\n", 4, "`vt` takes u v [w]"),
+            ("f 1 2\n", 4, "at least 3 vertices, found 2"),
+            ("l 1\n", 4, "at least 2 vertices"),
+            ("f 0 1 2\n", 4, "OBJ counts from 1"),
+            ("f 1 2 4\n", 4, "only 3 vertices are defined"),
+            ("f -1 -2 -4\n", 4, "refers to vertex -4"),
+            ("f 1 2 -9223372036854775808\n", 4, "refers to vertex -9223372036854775808"),
+            ("f 1 2 99999999999999999999\n", 4, "not a whole number"),
+            ("f 1/1 2/1 3/1\n", 4, "no texture coordinates are defined"),
+            ("vn 0 0 1\nf 1//1 2//1 3//2\n", 5, "only 1 normal is defined"),
+            ("f 1 2 3/1/1/1\n", 4, "not a vertex reference"),
+            ("f 1 2 /3\n", 4, "not a vertex reference"),
+        ] {
+            let e = load(&write(dir.path(), "bad.obj", &format!("{TRI}{body}"))).unwrap_err().to_string();
+            assert!(e.contains(&format!("bad.obj:{line}: malformed OBJ: ")) && e.contains(needle), "{body:?}: {e}");
+        }
+        // Valid forms still load: w, relative indices, texture coordinates, vertex colours.
+        let ok = "v 0 0 0 2\nv 2 0 0 2\nv 0 1 0\nvt 0 0\nvt 1 0 0\nvn 0 0 1\nf -3/1/1 -2/2/1 -1//1\n";
+        let s = load(&write(dir.path(), "ok.obj", ok)).unwrap();
+        assert_eq!(triangles(&s).len(), 1);
+        let Shape::Triangle { vertices, .. } = triangles(&s)[0] else { panic!() };
+        assert_eq!(vertices[1], Vec3::X, "w divides");
+        let colours = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+        assert_eq!(triangles(&load(&write(dir.path(), "rgb.obj", colours)).unwrap()).len(), 1);
+    }
+
+    #[test]
+    fn mtl_colours_take_three_values_or_one_grey() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+        // One value is a grey (tobj 4 itself panics on it).
+        write(dir.path(), "m.mtl", "newmtl a\nKd 0.5\nKs 0.25\nNs 10\n");
+        let s = load(&write(dir.path(), "m.obj", obj)).unwrap();
+        assert_eq!(s.materials[0].color, Vec3::splat(0.5));
+        assert_eq!(s.materials[0].specular_color, Some(Vec3::splat(0.25)));
+        assert_eq!(s.materials[0].shininess, 10.0);
+        for (mtl, line, needle) in [
+            ("newmtl a\nKd 1 0\n", 2, "found 2 value(s)"),
+            ("newmtl a\nKs\n", 2, "found 0 value(s)"),
+            ("newmtl a\nKd 1 1 1\nNs 1e39\n", 3, "`1e39` is not a finite number"),
+            ("newmtl a\nd -halo 0.5\n", 2, "`d` takes one number"),
+            ("newmtl a\nTf 1 nan 1\n", 2, "not a finite number"),
+        ] {
+            write(dir.path(), "m.mtl", mtl);
+            let e = load(&write(dir.path(), "m.obj", obj)).unwrap_err().to_string();
+            assert!(e.contains(&format!("m.mtl:{line}: malformed MTL: ")) && e.contains(needle), "{mtl:?}: {e}");
+        }
+        std::fs::write(dir.path().join("m.mtl"), b"newmtl a\nKd 1 1 1\n\xfe\n").unwrap();
+        let e = load(&write(dir.path(), "m.obj", obj)).unwrap_err().to_string();
+        assert!(e.contains("m.mtl:3:1: not a text file"), "{e}");
+    }
+
+    #[test]
+    fn nothing_to_render_names_the_end_of_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let e = load(&write(dir.path(), "flat.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")).unwrap_err().to_string();
+        assert!(e.contains("flat.obj:4: ") && e.contains("no faces"), "{e}");
+        let e = load(&write(dir.path(), "empty.obj", "")).unwrap_err().to_string();
+        assert!(e.contains("empty.obj:1: ") && e.contains("no faces"), "{e}");
+    }
+
+    #[test]
+    fn huge_and_tiny_normals_normalise() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 3e38\nvn 0 0 1e-30\nvn 0 0 0\nf 1//1 2//2 3//1\nf 1//1 2//3 3//1\n";
+        let s = load(&write(dir.path(), "n.obj", obj)).unwrap();
+        let tris = triangles(&s);
+        assert!(matches!(tris[0], Shape::Triangle { normals: Some(n), .. } if *n == [Vec3::Z; 3]), "{tris:?}");
+        assert!(matches!(tris[1], Shape::Triangle { normals: None, .. }), "a zero normal shades flat: {tris:?}");
+        assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
     }
 
     #[test]

@@ -34,8 +34,9 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::scene::MAX_DEPTH_LIMIT;
+use crate::icosphere;
 use crate::shape::{polygon_non_planarity, polygon_normal};
-use crate::{nff, obj};
+use crate::{nff, obj, ReadError};
 use crate::{
     Attenuation, Camera, DepthCue, Light, LightKind, LoadError, Location, Material, Object,
     Projection, RenderSettings, Scene, ShadowMode, Shape, SpecularModel,
@@ -45,8 +46,10 @@ use crate::{
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
-    let source = std::fs::read_to_string(path)
-        .map_err(|e| LoadError::new(path, None, format!("cannot read scene file: {e}")))?;
+    let source = crate::read_text(path).map_err(|e| match e {
+        ReadError::Io(e) => LoadError::new(path, None, format!("cannot read scene file: {e}")),
+        ReadError::NotText(e) => e,
+    })?;
     parse(&source, path)
 }
 
@@ -94,8 +97,38 @@ fn finite<E: de::Error>(v: f64) -> Result<f32, E> {
     let f = v as f32;
     if f.is_finite() {
         Ok(f)
+    } else if v.is_finite() {
+        Err(E::custom(format!("expected a finite number, found {v:e} (beyond the range of 32-bit floats)")))
     } else {
         Err(E::custom(format!("expected a finite number, found {v}")))
+    }
+}
+
+/// Exactly `N` values: serde's fixed-size arrays would silently drop extra
+/// elements (`[0, 0, 0, 1]` read as a point).
+fn exactly<'de, D: Deserializer<'de>, T: Deserialize<'de>, const N: usize>(d: D, what: &str) -> Result<[T; N], D::Error> {
+    let values = Vec::<T>::deserialize(d)?;
+    let found = values.len();
+    values.try_into().map_err(|_| de::Error::custom(format!("invalid length {found}, expected {what}")))
+}
+
+/// A row-major 4×4 matrix of finite numbers.
+#[derive(Debug, Clone, Copy)]
+struct Matrix([[f32; 4]; 4]);
+
+impl<'de> Deserialize<'de> for Matrix {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let rows: [Vec<f64>; 4] = exactly(d, "4 rows of 4 numbers")?;
+        let mut m = [[0.0f32; 4]; 4];
+        for (row, values) in m.iter_mut().zip(rows) {
+            if values.len() != 4 {
+                return Err(de::Error::custom(format!("invalid row length {}, expected 4 rows of 4 numbers", values.len())));
+            }
+            for (slot, v) in row.iter_mut().zip(values) {
+                *slot = finite(v)?;
+            }
+        }
+        Ok(Matrix(m))
     }
 }
 
@@ -107,7 +140,7 @@ impl<'de> Deserialize<'de> for Num {
 
 impl<'de> Deserialize<'de> for V3 {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let [x, y, z] = <[f64; 3]>::deserialize(d)?;
+        let [x, y, z]: [f64; 3] = exactly(d, "an array of 3 numbers")?;
         Ok(V3(Vec3::new(finite(x)?, finite(y)?, finite(z)?)))
     }
 }
@@ -297,7 +330,9 @@ struct ObjectDef {
     translate: Option<V3>,
     rotate: Option<V3>,
     scale: Option<Spanned<Scale>>,
-    matrix: Option<Spanned<[[Num; 4]; 4]>>,
+    matrix: Option<Spanned<Matrix>>,
+    subdivisions: Option<Spanned<i64>>,
+    displacement: Option<Spanned<Num>>,
 }
 
 /// The OBJ files read so far, by canonical path.
@@ -338,7 +373,10 @@ impl Builder<'_> {
         let camera = self.camera(&file.camera)?;
         let ambient = match &file.ambient {
             None => Vec3::ZERO,
-            Some(a) => a.color.map_or(Vec3::ONE, |c| c.0) * self.ranged(&a.intensity, "intensity", 1.0, 0.0, f32::MAX)?,
+            Some(a) => {
+                let ambient = a.color.map_or(Vec3::ONE, |c| c.0) * self.ranged(&a.intensity, "intensity", 1.0, 0.0, f32::MAX)?;
+                self.no_overflow(&a.intensity, ambient)?
+            }
         };
         let render = match &file.render {
             None => RenderSettings::default(),
@@ -366,6 +404,15 @@ impl Builder<'_> {
         Ok(Scene { width, height, background, camera, ambient, lights, materials, objects, depth_cue, render, warnings })
     }
 
+    /// The text of a file the scene names at `rel`: a file that cannot be read
+    /// is an error at the reference, one that is not text an error in that file.
+    fn read_referenced(&self, rel: &Spanned<String>, path: &Path) -> Result<String, LoadError> {
+        crate::read_text(path).map_err(|e| match e {
+            ReadError::Io(e) => self.error_at(rel, format!("path: cannot read `{}`: {e}", path.display())),
+            ReadError::NotText(e) => e,
+        })
+    }
+
     /// A path written in the scene file, relative to the scene file.
     fn relative(&self, path: &str) -> PathBuf {
         self.path.parent().map_or_else(|| PathBuf::from(path), |dir| dir.join(path))
@@ -384,8 +431,7 @@ impl Builder<'_> {
         if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nff")) {
             return Err(self.error_at(rel, "path: only .nff files can be included (place an .obj with an object of type \"mesh\")"));
         }
-        let source = std::fs::read_to_string(&path)
-            .map_err(|e| self.error_at(rel, format!("path: cannot read `{}`: {e}", path.display())))?;
+        let source = self.read_referenced(rel, &path)?;
         let contents = nff::parse_contents(&source, &path, &nff::NffOptions::default())?;
         let offset = materials.len();
         materials.extend(contents.materials);
@@ -402,7 +448,7 @@ impl Builder<'_> {
             if def.translate.is_some() || def.rotate.is_some() || def.scale.is_some() {
                 return Err(self.error_at(m, "matrix: cannot be combined with translate, rotate or scale"));
             }
-            let rows = m.get_ref().map(|row| row.map(|v| f64::from(v.0)));
+            let rows = m.get_ref().0.map(|row| row.map(f64::from));
             // from_cols_array_2d reads each inner array as a column.
             let matrix = DMat4::from_cols_array_2d(&rows).transpose();
             if (matrix.row(3) - glam::DVec4::W).abs().max_element() > 1e-9 {
@@ -441,10 +487,14 @@ impl Builder<'_> {
         let rel = def.path.as_ref().ok_or_else(|| self.error_at(object, "object: a mesh needs `path`"))?;
         let transform = self.transform(object)?;
         let path = self.relative(rel.get_ref());
+        if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+            return Err(self.error_at(rel, "path: a mesh is read from an .obj file (bring in an .nff file with [[include]])"));
+        }
         let key = std::fs::canonicalize(&path)
             .map_err(|e| self.error_at(rel, format!("path: cannot open `{}`: {e}", path.display())))?;
         if !meshes.cache.contains_key(&key) {
-            let mesh = obj::load_mesh(&path)?;
+            let source = self.read_referenced(rel, &path)?;
+            let mesh = obj::parse_mesh(&source, &path)?;
             meshes.warnings.extend(mesh.warnings.iter().cloned());
             meshes.cache.insert(key.clone(), CachedMesh { mesh, material_offset: None });
         }
@@ -463,16 +513,19 @@ impl Builder<'_> {
         let point = |p: Vec3| transform.transform_point3(p.as_dvec3()).as_vec3();
         let normal = |n: Vec3| (normal_matrix * n.as_dvec3()).normalize().as_vec3();
         for part in &cached.mesh.parts {
-            let shapes = part
-                .triangles
-                .iter()
-                .map(|t| match t {
-                    Shape::Triangle { vertices, normals } => {
-                        Shape::Triangle { vertices: vertices.map(point), normals: normals.map(|n| n.map(normal)) }
-                    }
-                    other => unreachable!("meshes hold only triangles, found {other:?}"),
-                })
-                .collect();
+            let mut shapes = Vec::with_capacity(part.triangles.len());
+            for t in &part.triangles {
+                let Shape::Triangle { vertices, normals } = t else {
+                    unreachable!("meshes hold only triangles, found {t:?}");
+                };
+                let vertices = vertices.map(point);
+                if !vertices.iter().all(|v| v.is_finite()) {
+                    return Err(self.error_at(object, "object: the transform takes the mesh beyond the range of 32-bit floats"));
+                }
+                // A normal the transform cannot carry (it underflows) leaves the triangle flat.
+                let normals = normals.map(|n| n.map(normal)).filter(|n| n.iter().all(|v| v.is_finite()));
+                shapes.push(Shape::Triangle { vertices, normals });
+            }
             objects.push(Object { material: material.unwrap_or(offset + part.material), shapes });
         }
         Ok(())
@@ -520,6 +573,9 @@ impl Builder<'_> {
             }
         };
         let camera_value = Camera { eye: def.eye.0, look_at: def.look_at.0, up: def.up.map_or(Vec3::Y, |u| u.0), projection };
+        if crate::view_overflows(&camera_value) {
+            return Err(self.error_at(camera, "camera: eye and look_at are too far apart (the view direction overflows 32-bit floats)"));
+        }
         if camera_value.basis().is_none() {
             return Err(self.error_at(camera, "camera: `up` is parallel to the view direction (or eye equals look_at)"));
         }
@@ -582,10 +638,8 @@ impl Builder<'_> {
                     return Err(self.error_at(light, "light: a directional light has a `direction`, not a `position`"));
                 }
                 let d = def.direction.ok_or_else(|| self.error_at(light, "light: missing field `direction`"))?;
-                if d.0.length() == 0.0 {
-                    return Err(self.error_at(light, "direction: must not be zero"));
-                }
-                LightKind::Directional { direction: d.0.normalize() }
+                let direction = crate::unit(d.0).ok_or_else(|| self.error_at(light, "direction: must not be zero"))?;
+                LightKind::Directional { direction }
             }
             other => return Err(self.error_at(&def.kind, format!("type: unknown light type `{other}`, expected `point` or `directional`"))),
         };
@@ -610,13 +664,21 @@ impl Builder<'_> {
         if let (Some(c), Attenuation::None | Attenuation::InverseSquare) = (&def.coefficients, attenuation) {
             return Err(self.error_at(c, "coefficients: only polynomial attenuation takes coefficients"));
         }
-        Ok(Light {
-            kind,
-            color: def.color.map_or(Vec3::ONE, |c| c.0),
-            intensity: self.ranged(&def.intensity, "intensity", 1.0, 0.0, f32::MAX)?,
-            attenuation,
-            enabled: def.enabled.unwrap_or(true),
-        })
+        let color = def.color.map_or(Vec3::ONE, |c| c.0);
+        let intensity = self.ranged(&def.intensity, "intensity", 1.0, 0.0, f32::MAX)?;
+        self.no_overflow(&def.intensity, color * intensity)?;
+        Ok(Light { kind, color, intensity, attenuation, enabled: def.enabled.unwrap_or(true) })
+    }
+
+    /// `light` (a colour times `intensity`) when it is finite: the product of
+    /// two finite numbers can overflow 32-bit floats.
+    fn no_overflow(&self, intensity: &Option<Spanned<Num>>, light: Vec3) -> Result<Vec3, LoadError> {
+        match intensity {
+            Some(i) if !light.is_finite() => {
+                Err(self.error_at(i, "intensity: the colour times the intensity overflows 32-bit floats"))
+            }
+            _ => Ok(light),
+        }
     }
 
     fn material(&self, name: &str, def: &MaterialDef) -> Result<Material, LoadError> {
@@ -671,10 +733,11 @@ impl Builder<'_> {
             "polygon" => &["vertices"],
             "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
             "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
+            "icosphere" => &["center", "radius", "subdivisions", "displacement"],
             other => {
                 return Err(self.error_at(
                     &def.kind,
-                    format!("type: unknown object type `{other}`, expected sphere, triangle, polygon, cone, cylinder or mesh"),
+                    format!("type: unknown object type `{other}`, expected sphere, triangle, polygon, cone, cylinder, mesh or icosphere"),
                 ));
             }
         };
@@ -692,6 +755,8 @@ impl Builder<'_> {
             ("rotate", def.rotate.is_some()),
             ("scale", def.scale.is_some()),
             ("matrix", def.matrix.is_some()),
+            ("subdivisions", def.subdivisions.is_some()),
+            ("displacement", def.displacement.is_some()),
         ];
         if let Some((key, _)) = present.iter().find(|(k, p)| *p && !allowed.contains(k)) {
             return Err(self.error_at(object, format!("object: `{key}` does not apply to a {kind}")));
@@ -708,6 +773,22 @@ impl Builder<'_> {
                 Err(self.error_at(s, format!("{key}: must be positive, found {}", s.get_ref().0)))
             }
         };
+        if kind == "icosphere" {
+            let center = def.center.ok_or_else(|| missing("center"))?.0;
+            let radius = positive(&def.radius, "radius")?;
+            let s = def.subdivisions.as_ref().ok_or_else(|| missing("subdivisions"))?;
+            let subdivisions = u32::try_from(*s.get_ref())
+                .ok()
+                .filter(|n| *n <= icosphere::MAX_SUBDIVISIONS)
+                .ok_or_else(|| self.error_at(s, format!("subdivisions: {} is outside 0..={}", s.get_ref(), icosphere::MAX_SUBDIVISIONS)))?;
+            let displacement = self.ranged(&def.displacement, "displacement", 0.0, 0.0, 0.5)?;
+            let shapes = icosphere::icosphere(center, radius, subdivisions, displacement);
+            if !shapes.iter().all(crate::bounds_are_finite) {
+                return Err(self.error_at(object, "object: the icosphere reaches beyond the range of 32-bit floats"));
+            }
+            objects.push(Object { material, shapes });
+            return Ok(());
+        }
         let shape = match kind {
             "sphere" => Shape::Sphere { center: def.center.ok_or_else(|| missing("center"))?.0, radius: positive(&def.radius, "radius")? },
             "triangle" | "polygon" => {
@@ -728,9 +809,8 @@ impl Builder<'_> {
                 } else {
                     let normals = match &def.normals {
                         None => None,
-                        Some(ns) if ns.get_ref().len() == 3 && ns.get_ref().iter().all(|n| n.0.length() > 0.0) => {
-                            let n = ns.get_ref();
-                            Some([n[0].0.normalize(), n[1].0.normalize(), n[2].0.normalize()])
+                        Some(ns) if ns.get_ref().len() == 3 && ns.get_ref().iter().all(|n| crate::unit(n.0).is_some()) => {
+                            Some([0, 1, 2].map(|i| crate::unit(ns.get_ref()[i].0).expect("checked")))
                         }
                         Some(ns) => return Err(self.error_at(ns, "normals: a triangle needs 3 non-zero normals")),
                     };
@@ -756,6 +836,9 @@ impl Builder<'_> {
                 Shape::Cone { base, base_radius, apex, apex_radius }
             }
         };
+        if !crate::bounds_are_finite(&shape) {
+            return Err(self.error_at(object, format!("object: the {kind} reaches beyond the range of 32-bit floats")));
+        }
         objects.push(Object { material, shapes: vec![shape] });
         Ok(())
     }
@@ -920,6 +1003,46 @@ base_radius = 0.5
     }
 
     #[test]
+    fn points_need_exactly_three_numbers() {
+        for (center, needle) in [("[0, 0, 0, 1]", "invalid length 4"), ("[0, 0]", "invalid length 2"), ("[0, 0, 1e39]", "32-bit")] {
+            let e = error(&format!("[[object]]\ntype = \"sphere\"\ncenter = {center}\nradius = 1\n"));
+            assert!(e.starts_with("test.toml:12:10:") && e.contains(needle), "{center}: {e}");
+        }
+        let e = error("[[object]]\ntype = \"polygon\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0, 7]]\n");
+        assert!(e.starts_with("test.toml:12:") && e.contains("invalid length 4"), "{e}");
+    }
+
+    #[test]
+    fn geometry_and_views_that_overflow_f32_are_errors() {
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [3e38, 0, 0]\nradius = 3e38\n");
+        assert!(e.starts_with("test.toml:10:1:") && e.contains("32-bit floats"), "{e}");
+        let e = error("[[object]]\ntype = \"cylinder\"\nbase = [3e38, 0, 0]\napex = [3e38, 1, 0]\nbase_radius = 3e38\n");
+        assert!(e.starts_with("test.toml:10:1:") && e.contains("32-bit floats"), "{e}");
+        let src = MINIMAL.replace("eye = [0, 0, 5]", "eye = [0, 0, 3e38]").replace("look_at = [0, 0, 0]", "look_at = [0, 0, -3e38]");
+        let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
+        assert!(e.starts_with("p.toml:6:1:") && e.contains("too far apart"), "{e}");
+    }
+
+    #[test]
+    fn directions_and_normals_of_any_finite_size_normalise() {
+        let s = parse_str(
+            "[[light]]\ntype = \"directional\"\ndirection = [3e38, 0, 0]\n[[object]]\ntype = \"triangle\"\n\
+             vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\nnormals = [[0, 0, 3e38], [0, 0, 1e-30], [0, 0, 1]]\n",
+        )
+        .unwrap();
+        assert_eq!(s.lights[0].kind, LightKind::Directional { direction: Vec3::X });
+        assert!(matches!(&s.objects[0].shapes[0], Shape::Triangle { normals: Some(n), .. } if *n == [Vec3::Z; 3]));
+    }
+
+    #[test]
+    fn light_that_overflows_f32_is_an_error() {
+        let e = error("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\ncolor = [3e38, 0, 0]\nintensity = 10\n");
+        assert!(e.starts_with("test.toml:14:13:") && e.contains("overflows"), "{e}");
+        let e = error("[ambient]\ncolor = 3e38\nintensity = 3e38\n");
+        assert!(e.starts_with("test.toml:12:13:") && e.contains("overflows"), "{e}");
+    }
+
+    #[test]
     fn up_parallel_to_view_is_an_error() {
         let src = MINIMAL.replace("fov = 40", "fov = 40\nup = [0, 0, 1]");
         let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
@@ -1051,6 +1174,33 @@ path = "cube.obj"
                 ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nmaterial = \"nope\"\n", "scene.toml:13:", "nope"),
                 ("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\ntranslate = [1, 0, 0]\n", "scene.toml:10:", "`translate` does not apply"),
                 ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nradius = 1\n", "scene.toml:10:", "`radius` does not apply"),
+            ] {
+                let e = scene_file(dir.path(), extra).unwrap_err().to_string();
+                assert!(e.contains(at) && e.contains(needle), "{extra}: {e}");
+            }
+        }
+
+        #[test]
+        fn unreadable_references_name_the_right_file() {
+            let dir = tempfile::tempdir().unwrap();
+            std::fs::create_dir(dir.path().join("folder.obj")).unwrap();
+            write(dir.path(), "part.nff", "s 0 0 0 1\n");
+            std::fs::write(dir.path().join("binary.obj"), b"v 0 0 0\nv 1 \xff 0\n").unwrap();
+            std::fs::write(dir.path().join("binary.nff"), b"s 0 0 0 1\n\x80").unwrap();
+            write(dir.path(), "cube.obj", CUBE_OBJ);
+            for (extra, at, needle) in [
+                // A directory canonicalises but cannot be read: the TOML line says so.
+                ("[[object]]\ntype = \"mesh\"\npath = \"folder.obj\"\n", "scene.toml:12:8:", "cannot read"),
+                ("[[object]]\ntype = \"mesh\"\npath = \"binary.obj\"\n", "binary.obj:2:5:", "not a text file"),
+                ("[[include]]\npath = \"binary.nff\"\n", "binary.nff:2:1:", "not a text file"),
+                // An NFF read as an OBJ would fail on its first line, naming the wrong problem.
+                ("[[object]]\ntype = \"mesh\"\npath = \"part.nff\"\n", "scene.toml:12:8:", "[[include]]"),
+                (
+                    "[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nmatrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0,5],[0,0,0,1]]\n",
+                    "scene.toml:13:",
+                    "row length 5",
+                ),
+                ("[[object]]\ntype = \"mesh\"\npath = \"cube.obj\"\nscale = 1e38\ntranslate = [0, 0, 3e38]\n", "scene.toml:10:1:", "32-bit floats"),
             ] {
                 let e = scene_file(dir.path(), extra).unwrap_err().to_string();
                 assert!(e.contains(at) && e.contains(needle), "{extra}: {e}");

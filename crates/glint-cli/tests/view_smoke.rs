@@ -1,0 +1,143 @@
+//! `glint view` for real: under Xvfb (`xvfb-run`, which `bash .ci/setup`
+//! installs) the binary opens its window, renders the showcase for a few
+//! seconds and exits cleanly when the window is asked to close, as a window
+//! manager's close button asks (WM_DELETE_WINDOW).
+
+use std::io::{BufRead, BufReader, Read};
+use std::os::unix::process::CommandExt;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use x11rb::connection::Connection;
+use x11rb::protocol::xproto::{
+    AtomEnum, ClientMessageEvent, ConnectionExt, EventMask, ImageFormat, MapState, Window,
+};
+use x11rb::rust_connection::RustConnection;
+
+const SCREEN: (u16, u16) = (1280, 800);
+
+/// Ends the whole process group (xvfb-run, Xvfb, glint) if the test fails early.
+struct Group(Child);
+
+impl Drop for Group {
+    fn drop(&mut self) {
+        if let Ok(None) = self.0.try_wait() {
+            let _ = Command::new("kill").args(["-KILL", &format!("-{}", self.0.id())]).status();
+            let _ = self.0.wait();
+        }
+    }
+}
+
+/// The top-level window whose title starts with "Glint", once it is shown.
+fn find_window(conn: &RustConnection, root: Window) -> Option<Window> {
+    let children = conn.query_tree(root).ok()?.reply().ok()?.children;
+    children.into_iter().find(|&w| {
+        let title = conn
+            .get_property(false, w, AtomEnum::WM_NAME, AtomEnum::ANY, 0, 256)
+            .ok()
+            .and_then(|c| c.reply().ok())
+            .map(|p| p.value)
+            .unwrap_or_default();
+        let shown = conn
+            .get_window_attributes(w)
+            .ok()
+            .and_then(|c| c.reply().ok())
+            .is_some_and(|a| a.map_state == MapState::VIEWABLE);
+        title.starts_with(b"Glint") && shown
+    })
+}
+
+/// The screen's pixels and how many of them show the showcase's sky.
+fn screenshot(conn: &RustConnection, root: Window) -> (Vec<[u8; 3]>, usize) {
+    let shot = conn.get_image(ImageFormat::Z_PIXMAP, root, 0, 0, SCREEN.0, SCREEN.1, !0).unwrap().reply().unwrap();
+    // 24-bit depth comes as 32-bit BGRX pixels.
+    let pixels: Vec<[u8; 3]> = shot.data.chunks_exact(4).map(|p| [p[2], p[1], p[0]]).collect();
+    let sky = pixels.iter().filter(|p| p.iter().zip([196u8, 215, 237]).all(|(a, b)| a.abs_diff(b) <= 4)).count();
+    (pixels, sky)
+}
+
+fn save(pixels: &[[u8; 3]], path: &Path) {
+    let (w, h) = (u32::from(SCREEN.0), u32::from(SCREEN.1));
+    image::RgbImage::from_fn(w, h, |x, y| image::Rgb(pixels[(y * w + x) as usize])).save(path).unwrap();
+}
+
+#[test]
+fn the_viewer_renders_under_xvfb_and_closes_cleanly() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/showcase.toml");
+    let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
+    let child = Command::new("xvfb-run")
+        .args(["-a", "-s", &screen, "sh", "-c", r#"echo "$DISPLAY"; exec "$0" view "$1""#])
+        .arg(env!("CARGO_BIN_EXE_glint"))
+        .arg(&scene)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .process_group(0)
+        .spawn()
+        .expect("xvfb-run must be installed (bash .ci/setup installs it)");
+    let mut group = Group(child);
+    let mut stderr = group.0.stderr.take().unwrap();
+    let stderr = std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = stderr.read_to_string(&mut text);
+        text
+    });
+    let mut display = String::new();
+    BufReader::new(group.0.stdout.take().unwrap()).read_line(&mut display).unwrap();
+    let display = display.trim().to_string();
+    assert!(display.starts_with(':'), "xvfb-run gave no display: {display:?}");
+
+    let (conn, screen_num) = x11rb::connect(Some(&display)).expect("connect to Xvfb");
+    let root = conn.setup().roots[screen_num].root;
+    let start = Instant::now();
+    let window = loop {
+        if let Some(w) = find_window(&conn, root) {
+            break w;
+        }
+        if let Ok(Some(status)) = group.0.try_wait() {
+            panic!("glint view exited before showing a window ({status}): {}", stderr.join().unwrap());
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "no Glint window appeared");
+        std::thread::sleep(Duration::from_millis(200));
+    };
+
+    // Wait for the rendered showcase: its sky, [0.55, 0.68, 0.85] in sRGB,
+    // fills a good part of the image once the kernels are compiled.
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("view-smoke.png");
+    let start = Instant::now();
+    loop {
+        let (pixels, sky) = screenshot(&conn, root);
+        if sky > 20_000 {
+            break;
+        }
+        if start.elapsed() > Duration::from_secs(120) {
+            save(&pixels, &out);
+            panic!("the rendered showcase is not on screen ({sky} sky pixels); see {}", out.display());
+        }
+        assert!(group.0.try_wait().unwrap().is_none(), "glint view died: {}", stderr.join().unwrap());
+        std::thread::sleep(Duration::from_millis(500));
+    }
+    // Keep it rendering for a few seconds.
+    std::thread::sleep(Duration::from_secs(3));
+    assert!(group.0.try_wait().unwrap().is_none(), "glint view died while rendering: {}", stderr.join().unwrap());
+    save(&screenshot(&conn, root).0, &out);
+
+    let atom = |name: &[u8]| conn.intern_atom(false, name).unwrap().reply().unwrap().atom;
+    let (protocols, delete) = (atom(b"WM_PROTOCOLS"), atom(b"WM_DELETE_WINDOW"));
+    let close = ClientMessageEvent::new(32, window, protocols, [delete, x11rb::CURRENT_TIME, 0, 0, 0]);
+    conn.send_event(false, window, EventMask::NO_EVENT, close).unwrap();
+    conn.flush().unwrap();
+
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = group.0.try_wait().unwrap() {
+            break status;
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "glint view did not exit after the close request");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let stderr = stderr.join().unwrap();
+    assert!(status.success(), "glint view exited with {status}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -1,0 +1,362 @@
+//! What an interactive viewer needs beyond a one-shot render: tracing a band of
+//! rows without waiting for the device, resolving straight into a texture the
+//! UI draws, reading ray counts without stalling, editing lights, materials and
+//! per-frame settings in place, and picking the object under a pixel.
+
+use std::ops::Range;
+use std::sync::{Arc, Mutex};
+
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, View, PROJECTION_ORTHOGRAPHIC};
+
+use crate::shaders::{ShaderSource, PRESENT_FILES};
+use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
+
+/// Bytes of one accumulation pixel (rgb sum and sample count).
+const PIXEL_BYTES: u64 = 16;
+const STAT_BYTES: u64 = 5 * 4;
+
+/// The uniforms of resolve.wgsl's `ResolveParams`, which the present kernel shares.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct PresentParams {
+    pixel_count: u32,
+    tone_map: u32,
+    exposure: f32,
+    view: u32,
+    scale: f32,
+    _pad: [u32; 3],
+}
+
+/// The present kernel: resolve.wgsl's display mapping, written into a texture.
+pub struct PresentPipeline {
+    pipeline: wgpu::ComputePipeline,
+}
+
+/// An rgba8 texture of a scene's image size that the present kernel fills.
+pub struct PresentTarget {
+    pub texture: wgpu::Texture,
+    /// A view of `texture` for sampling it (egui draws it).
+    pub view: wgpu::TextureView,
+    params: wgpu::Buffer,
+    bind: wgpu::BindGroup,
+}
+
+/// Ray counts read back a few frames late instead of stalling for them: the
+/// device's counters are copied out and cleared on `request`, and `poll` hands
+/// the copy over once the device has written it.
+pub struct RayCounter {
+    buffer: wgpu::Buffer,
+    mapped: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
+    in_flight: bool,
+}
+
+impl SceneBuffers {
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The per-frame settings the next dispatches use.
+    pub fn globals(&self) -> &Globals {
+        &self.globals
+    }
+
+    /// Replaces the per-frame settings (camera, background, ambient, flags,
+    /// depth cue, maximum depth) for the dispatches that follow. The image size
+    /// stays the one the buffers were made for and the light count the one
+    /// `write_lights` set.
+    pub fn set_globals(&mut self, globals: Globals) {
+        self.globals = Globals {
+            width: self.width,
+            height: self.height,
+            light_count: self.globals.light_count,
+            ..globals
+        };
+    }
+
+    /// How many lights the lights buffer holds.
+    pub fn light_capacity(&self) -> usize {
+        (self.lights.size() / std::mem::size_of::<GpuLight>() as u64) as usize
+    }
+
+    /// How many materials the materials buffer holds.
+    pub fn material_capacity(&self) -> usize {
+        (self.materials.size() / std::mem::size_of::<GpuMaterial>() as u64) as usize
+    }
+}
+
+impl Renderer {
+    /// Compiles the present kernel from `source`.
+    pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
+        let composed = source.compose(PRESENT_FILES)?;
+        composed.validate()?;
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("present_main"),
+            source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
+        });
+        let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("present_main"),
+            layout: None,
+            module: &module,
+            entry_point: Some("present_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Shader(format!("present_main: {e}")));
+        }
+        Ok(PresentPipeline { pipeline })
+    }
+
+    /// A texture of `scene`'s image size for `present` to fill.
+    pub fn present_target(&self, pipeline: &PresentPipeline, scene: &SceneBuffers) -> PresentTarget {
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("present"),
+            size: wgpu::Extent3d { width: scene.width, height: scene.height, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            // COPY_SRC lets the image be read back (tests compare it with `resolve`).
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let params = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("present params"),
+            size: std::mem::size_of::<PresentParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("present"),
+            layout: &pipeline.pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: params.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: scene.accum.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(&view) },
+            ],
+        });
+        PresentTarget { texture, view, params, bind }
+    }
+
+    /// Resolves the samples accumulated so far into `target`, as `resolve` would
+    /// (tone map, exposure, view, view scale of `options`), without reading back.
+    pub fn present(&self, pipeline: &PresentPipeline, target: &PresentTarget, options: &RenderOptions) {
+        let (width, height) = (target.texture.width(), target.texture.height());
+        let params = PresentParams {
+            pixel_count: width * height,
+            tone_map: options.tone_map as u32,
+            exposure: options.exposure,
+            view: options.view as u32,
+            scale: options.view_scale,
+            _pad: [0; 3],
+        };
+        self.queue.write_buffer(&target.params, 0, bytemuck::bytes_of(&params));
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline.pipeline);
+            pass.set_bind_group(0, &target.bind, &[]);
+            pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        }
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Adds sample `sample_index` to the pixels of `rows` and returns without
+    /// waiting for the device. Ray counts add up on the device until a
+    /// `RayCounter` collects them.
+    pub fn trace_rows(&self, scene: &SceneBuffers, sample_index: u32, options: &RenderOptions, rows: Range<u32>) {
+        let rows = rows.start.min(scene.height)..rows.end.min(scene.height);
+        if rows.is_empty() {
+            return;
+        }
+        let globals = Globals {
+            tile_origin: [0, rows.start],
+            sample_index,
+            seed: options.seed,
+            sample_count: if options.view.is_primary_only() { 1 } else { options.spp },
+            pixel_filter: options.filter as u32,
+            view: options.view as u32,
+            ..scene.globals
+        };
+        self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&self.trace);
+            pass.set_bind_group(0, &scene.trace_bind, &[]);
+            pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
+        }
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Empties the accumulated samples of `rows`, so the next sample traced
+    /// there starts them over while the other rows keep theirs.
+    pub fn clear_rows(&self, scene: &SceneBuffers, rows: Range<u32>) {
+        let (start, end) = (rows.start.min(scene.height), rows.end.min(scene.height));
+        if start >= end {
+            return;
+        }
+        let row_bytes = u64::from(scene.width) * PIXEL_BYTES;
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.clear_buffer(&scene.accum, u64::from(start) * row_bytes, Some(u64::from(end - start) * row_bytes));
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Writes `materials` (packed in scene order) over the scene's materials.
+    pub fn write_materials(&self, scene: &SceneBuffers, materials: &[GpuMaterial]) -> Result<(), GpuError> {
+        if materials.len() > scene.material_capacity() {
+            return Err(GpuError::Runtime(format!(
+                "{} materials do not fit the {} uploaded",
+                materials.len(),
+                scene.material_capacity()
+            )));
+        }
+        self.queue.write_buffer(&scene.materials, 0, bytemuck::cast_slice(materials));
+        Ok(())
+    }
+
+    /// Replaces the scene's lights by `lights` (the enabled ones, packed), which
+    /// must fit the buffer uploaded with the scene.
+    pub fn write_lights(&self, scene: &mut SceneBuffers, lights: &[GpuLight]) -> Result<(), GpuError> {
+        if lights.len() > scene.light_capacity() {
+            return Err(GpuError::Runtime(format!(
+                "{} lights do not fit the room for {} uploaded",
+                lights.len(),
+                scene.light_capacity()
+            )));
+        }
+        self.queue.write_buffer(&scene.lights, 0, bytemuck::cast_slice(lights));
+        scene.globals.light_count = lights.len() as u32;
+        Ok(())
+    }
+
+    /// The object whose surface the primary ray through image position (`x`,
+    /// `y`) hits first (pixels from the top-left corner, so a pixel's centre is
+    /// at i + 0.5), or `None` on a miss.
+    ///
+    /// The trace kernel runs in the object-id view on a one-pixel image whose
+    /// camera window shrinks to that ray. The pixel's value lands in the first
+    /// accumulation slot, which is saved before and restored after, so a
+    /// progressive render carries on undisturbed.
+    pub fn pick(&self, scene: &SceneBuffers, x: f32, y: f32) -> Result<Option<u32>, GpuError> {
+        let g = &scene.globals;
+        let c = &g.camera;
+        let us = -c.half_width + 2.0 * c.half_width * x / scene.width as f32;
+        let vs = c.half_height - 2.0 * c.half_height * y / scene.height as f32;
+        let (eye, u, v, w) = (Vec3::from(c.eye), Vec3::from(c.u), Vec3::from(c.v), Vec3::from(c.w));
+        // camera_ray gives origin eye' and direction normalize(−w') when the
+        // window has no extent; match the ray through (x, y) of the full image.
+        let (eye, w) = if c.projection == PROJECTION_ORTHOGRAPHIC {
+            (eye + us * u + vs * v, w)
+        } else {
+            (eye, w - us * u - vs * v)
+        };
+        let mut camera = *c;
+        camera.eye = eye.into();
+        camera.w = w.into();
+        camera.half_width = 0.0;
+        camera.half_height = 0.0;
+        let globals = Globals {
+            camera,
+            width: 1,
+            height: 1,
+            tile_origin: [0, 0],
+            sample_index: 0,
+            sample_count: 1,
+            view: View::Id as u32,
+            ..*g
+        };
+
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let saved = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pick saved pixel"),
+            size: PIXEL_BYTES,
+            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let readback = self.readback_buffer(PIXEL_BYTES);
+        self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&scene.accum, 0, &saved, 0, PIXEL_BYTES);
+        encoder.clear_buffer(&scene.accum, 0, Some(PIXEL_BYTES));
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&self.trace);
+            pass.set_bind_group(0, &scene.trace_bind, &[]);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&scene.accum, 0, &readback, 0, PIXEL_BYTES);
+        encoder.copy_buffer_to_buffer(&saved, 0, &scene.accum, 0, PIXEL_BYTES);
+        self.queue.submit([encoder.finish()]);
+        let bytes = self.read(&readback);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Runtime(e.to_string()));
+        }
+        let pixel: [f32; 4] = bytemuck::pod_read_unaligned(&bytes?);
+        // The id view writes the object index, or −1 on a miss.
+        Ok((pixel[0] >= 0.0).then_some(pixel[0] as u32))
+    }
+
+    pub fn ray_counter(&self) -> RayCounter {
+        RayCounter { buffer: self.readback_buffer(STAT_BYTES), mapped: Arc::new(Mutex::new(None)), in_flight: false }
+    }
+}
+
+impl RayCounter {
+    /// Starts collecting the rays counted since the last request; does nothing
+    /// while the previous collection is still on its way.
+    pub fn request(&mut self, renderer: &Renderer, scene: &SceneBuffers) {
+        if self.in_flight {
+            return;
+        }
+        let mut encoder = renderer.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&scene.stats, 0, &self.buffer, 0, STAT_BYTES);
+        encoder.clear_buffer(&scene.stats, 0, None);
+        renderer.queue.submit([encoder.finish()]);
+        let mapped = Arc::clone(&self.mapped);
+        self.buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+            *mapped.lock().expect("the map callback never panics") = Some(r);
+        });
+        self.in_flight = true;
+    }
+
+    /// The counts of the last request once the device has delivered them. The
+    /// device must be polled (`wgpu::Device::poll`) for that to happen.
+    pub fn poll(&mut self) -> Option<Result<RayStats, GpuError>> {
+        let result = self.mapped.lock().expect("the map callback never panics").take()?;
+        self.in_flight = false;
+        if let Err(e) = result {
+            return Some(Err(GpuError::Runtime(e.to_string())));
+        }
+        let counts: [u32; 5] = match self.buffer.get_mapped_range(..) {
+            Ok(bytes) => bytemuck::pod_read_unaligned(&bytes),
+            Err(e) => return Some(Err(GpuError::Runtime(e.to_string()))),
+        };
+        self.buffer.unmap();
+        let [eye_hit, eye_miss, shadow, reflect, refract] = counts.map(u64::from);
+        Some(Ok(RayStats { eye_hit, eye_miss, shadow, reflect, refract }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The host's copy of ResolveParams has the WGSL struct's size.
+    #[test]
+    fn present_params_match_wgsl() {
+        let module = ShaderSource::Embedded.compose(PRESENT_FILES).unwrap().validate().unwrap();
+        let (handle, _) = module.types.iter().find(|(_, t)| t.name.as_deref() == Some("ResolveParams")).unwrap();
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).unwrap();
+        assert_eq!(layouter[handle].size as usize, std::mem::size_of::<PresentParams>());
+    }
+}

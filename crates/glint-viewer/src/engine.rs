@@ -1,0 +1,208 @@
+//! The ray tracer behind the viewer: the compiled kernels, a scene on the
+//! device at the current render size, and its progressive accumulation.
+//!
+//! Nothing here waits for the device. Each frame adds at most one sample (a
+//! band of rows of one, when a whole sample takes too long) and at most two
+//! bands are in flight, so a slow device slows the image, never the UI.
+
+use std::collections::VecDeque;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
+use glint_gpu::shaders::ShaderSource;
+use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
+use glint_scene::Scene;
+
+/// The longest a band of rows should keep the device busy.
+const BAND_TARGET: Duration = Duration::from_millis(30);
+/// Bands submitted but not finished; more would only queue up latency.
+const MAX_IN_FLIGHT: usize = 2;
+/// The window over which Mrays/s is averaged.
+const RATE_WINDOW: Duration = Duration::from_millis(1000);
+
+/// The trace, resolve and present kernels, compiled from one shader source.
+pub struct Kernels {
+    pub renderer: Renderer,
+    pub present: PresentPipeline,
+    queue: wgpu::Queue,
+}
+
+impl Kernels {
+    pub fn compile(device: &wgpu::Device, queue: &wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
+        let renderer = Renderer::new(device.clone(), queue.clone(), source)?;
+        let present = renderer.present_pipeline(source)?;
+        Ok(Self { renderer, present, queue: queue.clone() })
+    }
+}
+
+/// A scene on the device at one image size, with the texture its image goes to.
+pub struct Canvas {
+    pub kernels: Arc<Kernels>,
+    pub prepared: Prepared,
+    pub target: PresentTarget,
+    /// Which loaded scene this is (the viewer counts loads).
+    pub scene_generation: u64,
+    counter: RayCounter,
+}
+
+impl Canvas {
+    /// Builds the BVH, uploads `scene` for `width` × `height` and makes its texture.
+    pub fn new(kernels: Arc<Kernels>, scene: &Scene, width: u32, height: u32, scene_generation: u64) -> Result<Self, GpuError> {
+        let prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
+        let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
+        let counter = kernels.renderer.ray_counter();
+        Ok(Self { kernels, prepared, target, scene_generation, counter })
+    }
+
+    pub fn size(&self) -> (u32, u32) {
+        (self.prepared.buffers.width(), self.prepared.buffers.height())
+    }
+
+    pub fn renderer(&self) -> &Renderer {
+        &self.kernels.renderer
+    }
+
+    /// Resolves what has accumulated into the texture.
+    pub fn present(&self, options: &RenderOptions) {
+        self.kernels.renderer.present(&self.kernels.present, &self.target, options);
+    }
+}
+
+/// Progress of the progressive render of the current state.
+pub struct Accumulation {
+    /// Samples per pixel completed.
+    pub samples: u32,
+    /// Where the next band starts. A sample may start on any row and wrap
+    /// around, so that while the view keeps changing every row still gets its
+    /// turn.
+    next_row: u32,
+    /// Rows of the current sample not yet traced; `None` for all of them.
+    rows_left: Option<u32>,
+    band_rows: u32,
+    in_flight: Arc<AtomicUsize>,
+    timing: Arc<Mutex<BandTiming>>,
+    /// The texture shows an image of the current canvas.
+    pub presented: bool,
+    rays: VecDeque<(Instant, u64)>,
+    /// Rays per second over the last second of rendering.
+    pub rays_per_second: f64,
+}
+
+impl Default for Accumulation {
+    fn default() -> Self {
+        Self {
+            samples: 0,
+            next_row: 0,
+            rows_left: None,
+            // Small at first; grows to what the device manages in BAND_TARGET.
+            band_rows: 64,
+            in_flight: Arc::new(AtomicUsize::new(0)),
+            timing: Arc::new(Mutex::new(BandTiming::default())),
+            presented: false,
+            rays: VecDeque::new(),
+            rays_per_second: 0.0,
+        }
+    }
+}
+
+/// When bands finish, to estimate how long the device spends on one.
+#[derive(Default)]
+struct BandTiming {
+    /// When the last band finished.
+    last_done: Option<Instant>,
+    /// Rows and device time of the last band finished.
+    last: Option<(u32, Duration)>,
+}
+
+/// What a frame's step did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Step {
+    /// All samples are in; nothing to do until something changes.
+    Done,
+    /// A band was traced.
+    Traced,
+    /// The device is still busy with earlier bands.
+    Waiting,
+}
+
+impl Accumulation {
+    /// Starts over. The first sample clears each band before tracing it, so
+    /// until it is done the rows below it still show the previous image.
+    pub fn restart(&mut self) {
+        self.samples = 0;
+        self.rows_left = None;
+    }
+
+    /// Adds the next band of rows of the next sample, up to `target` samples.
+    pub fn step(&mut self, canvas: &Canvas, options: &RenderOptions, target: u32) -> Step {
+        if self.samples >= target {
+            return Step::Done;
+        }
+        if self.in_flight.load(Ordering::Acquire) >= MAX_IN_FLIGHT {
+            return Step::Waiting;
+        }
+        let (_, height) = canvas.size();
+        self.adapt_band(height);
+        let left = *self.rows_left.get_or_insert(height);
+        let start = self.next_row.min(height - 1);
+        let rows = start..(start + self.band_rows.min(left)).min(height);
+        if self.samples == 0 {
+            canvas.renderer().clear_rows(&canvas.prepared.buffers, rows.clone());
+        }
+        canvas.renderer().trace_rows(&canvas.prepared.buffers, self.samples, options, rows.clone());
+        self.in_flight.fetch_add(1, Ordering::AcqRel);
+        let (in_flight, timing, submitted, count) =
+            (Arc::clone(&self.in_flight), Arc::clone(&self.timing), Instant::now(), rows.len() as u32);
+        canvas.kernels.queue.on_submitted_work_done(move || {
+            in_flight.fetch_sub(1, Ordering::AcqRel);
+            let now = Instant::now();
+            let mut t = timing.lock().expect("never poisoned");
+            // The queue runs in order: a band starts when it was submitted or
+            // when the band before it finished, whichever is later.
+            let started = t.last_done.map_or(submitted, |done| done.max(submitted));
+            t.last = Some((count, now - started));
+            t.last_done = Some(now);
+        });
+        self.next_row = if rows.end >= height { 0 } else { rows.end };
+        let left = left - (rows.end - rows.start);
+        self.rows_left = Some(left);
+        if left == 0 {
+            self.samples += 1;
+            self.rows_left = None;
+        }
+        Step::Traced
+    }
+
+    /// Sizes the next band so it keeps the device busy for about `BAND_TARGET`.
+    fn adapt_band(&mut self, height: u32) {
+        if let Some((rows, took)) = self.timing.lock().expect("never poisoned").last.take() {
+            let ideal = f64::from(rows) * BAND_TARGET.as_secs_f64() / took.as_secs_f64().max(1e-6);
+            // Grow gently, shrink at once; whole tiles of 8 rows.
+            let next = ideal.min(f64::from(self.band_rows) * 2.0) as u32 / 8 * 8;
+            self.band_rows = next.max(8);
+        }
+        self.band_rows = self.band_rows.clamp(8.min(height), height);
+    }
+
+    /// Collects ray counts that have arrived and asks for the next ones.
+    pub fn count_rays(&mut self, canvas: &mut Canvas) -> Result<(), GpuError> {
+        let now = Instant::now();
+        if let Some(stats) = canvas.counter.poll() {
+            self.rays.push_back((now, stats?.total()));
+        }
+        canvas.counter.request(&canvas.kernels.renderer, &canvas.prepared.buffers);
+        while self.rays.front().is_some_and(|(t, _)| now.duration_since(*t) > RATE_WINDOW) {
+            self.rays.pop_front();
+        }
+        if let (Some((first, _)), Some((last, _))) = (self.rays.front(), self.rays.back()) {
+            // Each entry holds the rays traced since the one before, so the
+            // first one's rays belong to the time before the window.
+            let span = last.duration_since(*first).as_secs_f64();
+            let rays: u64 = self.rays.iter().skip(1).map(|(_, r)| r).sum();
+            self.rays_per_second = if span > 0.0 { rays as f64 / span } else { 0.0 };
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,36 @@
+//! Work that takes longer than a frame (compiling kernels, loading a scene,
+//! building and uploading it) runs on its own thread; its result comes back
+//! through a channel and wakes the UI.
+
+use std::sync::mpsc::{channel, Receiver, Sender};
+
+pub struct Jobs<T> {
+    tx: Sender<T>,
+    rx: Receiver<T>,
+    ctx: egui::Context,
+}
+
+impl<T: Send + 'static> Jobs<T> {
+    pub fn new(ctx: egui::Context) -> Self {
+        let (tx, rx) = channel();
+        Self { tx, rx, ctx }
+    }
+
+    /// Runs `job` on a new thread; its result arrives in `finished`.
+    pub fn spawn(&self, name: &str, job: impl FnOnce() -> T + Send + 'static) {
+        let (tx, ctx) = (self.tx.clone(), self.ctx.clone());
+        std::thread::Builder::new()
+            .name(format!("glint {name}"))
+            .spawn(move || {
+                // The receiver lives as long as the app; after that nobody waits.
+                let _ = tx.send(job());
+                ctx.request_repaint();
+            })
+            .expect("the OS can start a thread");
+    }
+
+    /// The results that arrived since the last call.
+    pub fn finished(&self) -> Vec<T> {
+        self.rx.try_iter().collect()
+    }
+}
