@@ -9,4 +9,6 @@
 @group(0) @binding(5) var<storage, read> points: array<vec4<f32>>;
 // Running sum of samples per pixel: rgb and the sample count in w.
 @group(0) @binding(6) var<storage, read_write> accum: array<vec4<f32>>;
-@group(0) @binding(7) var<storage, read_write> stats: array<atomic<u32>, STAT_COUNT>;
+// Ray counts: STAT_COUNT counters per slot, one slot per workgroup (modulo the
+// slot count), so counting needs no barrier and atomics rarely contend.
+@group(0) @binding(7) var<storage, read_write> stats: array<atomic<u32>>;

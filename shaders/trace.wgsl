@@ -5,8 +5,6 @@
 const RAY_STACK: u32 = 17u; // MAX_DEPTH_LIMIT + 1: each level leaves one sibling pending
 const WORKGROUP: u32 = 64u;
 
-var<workgroup> group_stats: array<atomic<u32>, STAT_COUNT>;
-
 var<private> local_stats: array<u32, STAT_COUNT>;
 
 fn count_ray(kind: u32) {
@@ -121,12 +119,11 @@ fn primary_view(eye: Ray) -> vec3<f32> {
 }
 
 @compute @workgroup_size(8, 8)
-fn trace_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
-    if lid < STAT_COUNT {
-        atomicStore(&group_stats[lid], 0u);
-    }
-    workgroupBarrier();
-
+fn trace_main(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+) {
     let pixel = gid.xy + globals.tile_origin;
     if pixel.x < globals.width && pixel.y < globals.height {
         let eye = camera_ray(vec2<f32>(pixel) + sample_offset(pixel));
@@ -140,18 +137,13 @@ fn trace_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invo
         accum[index] += vec4<f32>(color, 1.0);
     }
 
-    // Ray counts: summed per workgroup first, so the device-wide atomics see one
-    // add per workgroup instead of one per ray.
+    // Ray counts go to this workgroup's slot: a workgroup barrier to sum them
+    // first would cost more than the few uncontended atomics.
+    let slots = arrayLength(&stats) / STAT_COUNT;
+    let base = ((wid.y * groups.x + wid.x) % slots) * STAT_COUNT;
     for (var k = 0u; k < STAT_COUNT; k++) {
         if local_stats[k] != 0u {
-            atomicAdd(&group_stats[k], local_stats[k]);
-        }
-    }
-    workgroupBarrier();
-    if lid < STAT_COUNT {
-        let total = atomicLoad(&group_stats[lid]);
-        if total != 0u {
-            atomicAdd(&stats[lid], total);
+            atomicAdd(&stats[base + k], local_stats[k]);
         }
     }
 }

@@ -10,12 +10,12 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, View, PROJECTION_ORTHOGRAPHIC};
 
+use crate::renderer::STAT_BYTES;
 use crate::shaders::{ShaderSource, PRESENT_FILES};
 use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
 
 /// Bytes of one accumulation pixel (rgb sum and sample count).
 const PIXEL_BYTES: u64 = 16;
-const STAT_BYTES: u64 = 5 * 4;
 
 /// The uniforms of resolve.wgsl's `ResolveParams`, which the present kernel shares.
 #[repr(C)]
@@ -336,13 +336,13 @@ impl RayCounter {
         if let Err(e) = result {
             return Some(Err(GpuError::Runtime(e.to_string())));
         }
-        let counts: [u32; 5] = match self.buffer.get_mapped_range(..) {
-            Ok(bytes) => bytemuck::pod_read_unaligned(&bytes),
+        let mut stats = RayStats::default();
+        match self.buffer.get_mapped_range(..) {
+            Ok(bytes) => stats.add_slots(bytemuck::cast_slice(&bytes)),
             Err(e) => return Some(Err(GpuError::Runtime(e.to_string()))),
-        };
+        }
         self.buffer.unmap();
-        let [eye_hit, eye_miss, shadow, reflect, refract] = counts.map(u64::from);
-        Some(Ok(RayStats { eye_hit, eye_miss, shadow, reflect, refract }))
+        Some(Ok(stats))
     }
 }
 

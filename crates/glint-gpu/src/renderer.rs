@@ -70,12 +70,15 @@ impl RayStats {
         self.eye_hit + self.eye_miss + self.shadow + self.reflect + self.refract
     }
 
-    fn add_counts(&mut self, counts: &[u32]) {
-        self.eye_hit += u64::from(counts[0]);
-        self.eye_miss += u64::from(counts[1]);
-        self.shadow += u64::from(counts[2]);
-        self.reflect += u64::from(counts[3]);
-        self.refract += u64::from(counts[4]);
+    /// Adds the counters of every slot of a stats buffer read back.
+    pub(crate) fn add_slots(&mut self, counts: &[u32]) {
+        for slot in counts.chunks_exact(STAT_COUNT as usize) {
+            self.eye_hit += u64::from(slot[0]);
+            self.eye_miss += u64::from(slot[1]);
+            self.shadow += u64::from(slot[2]);
+            self.reflect += u64::from(slot[3]);
+            self.refract += u64::from(slot[4]);
+        }
     }
 }
 
@@ -93,6 +96,10 @@ impl std::ops::Add for RayStats {
 }
 
 const STAT_COUNT: u64 = 5;
+/// Slots of ray counters in the stats buffer (one per workgroup, modulo this).
+const STAT_SLOTS: u64 = 1024;
+/// Size of the stats buffer.
+pub(crate) const STAT_BYTES: u64 = STAT_SLOTS * STAT_COUNT * 4;
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
@@ -201,7 +208,7 @@ impl Renderer {
         });
         let stats = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("stats"),
-            size: STAT_COUNT * 4,
+            size: STAT_BYTES,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -278,7 +285,7 @@ impl Renderer {
         progress: &mut dyn FnMut(u64),
     ) -> Result<RayStats, GpuError> {
         let (width, height) = (scene.width, scene.height);
-        let stats_readback = self.readback_buffer(STAT_COUNT * 4);
+        let stats_readback = self.readback_buffer(STAT_BYTES);
         let mut stats = RayStats::default();
         let adaptive_rows = (self.band_pixels.load(Ordering::Relaxed) / width).max(8);
         let mut rows = options.band_rows.unwrap_or(adaptive_rows).clamp(1, height);
@@ -303,11 +310,11 @@ impl Renderer {
                 pass.set_bind_group(0, &scene.trace_bind, &[]);
                 pass.dispatch_workgroups(width.div_ceil(8), band.div_ceil(8), 1);
             }
-            encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_COUNT * 4);
+            encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_BYTES);
             let start = Instant::now();
             self.queue.submit([encoder.finish()]);
             let counts: Vec<u32> = bytemuck::cast_slice(&self.read(&stats_readback)?).to_vec();
-            stats.add_counts(&counts);
+            stats.add_slots(&counts);
             y += band;
             progress(u64::from(y));
             if options.band_rows.is_none() {
