@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, View, PROJECTION_ORTHOGRAPHIC};
 
-use crate::renderer::STAT_BYTES;
+use crate::renderer::{create_pipeline, STAT_BYTES};
 use crate::shaders::{ShaderSource, PRESENT_FILES};
 use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
 
@@ -93,24 +93,7 @@ impl SceneBuffers {
 impl Renderer {
     /// Compiles the present kernel from `source`.
     pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
-        let composed = source.compose(PRESENT_FILES)?;
-        composed.validate()?;
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("present_main"),
-            source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
-        });
-        let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("present_main"),
-            layout: None,
-            module: &module,
-            entry_point: Some("present_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Shader(format!("present_main: {e}")));
-        }
+        let pipeline = create_pipeline(&self.device, source, PRESENT_FILES, "present_main")?;
         Ok(PresentPipeline { pipeline })
     }
 
@@ -177,23 +160,8 @@ impl Renderer {
         if rows.is_empty() {
             return;
         }
-        let globals = Globals {
-            tile_origin: [0, rows.start],
-            sample_index,
-            seed: options.seed,
-            sample_count: if options.view.is_primary_only() { 1 } else { options.spp },
-            pixel_filter: options.filter as u32,
-            view: options.view as u32,
-            ..scene.globals
-        };
-        self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.trace);
-            pass.set_bind_group(0, &scene.trace_bind, &[]);
-            pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
-        }
+        self.encode_band(scene, sample_index, options, rows, &mut encoder);
         self.queue.submit([encoder.finish()]);
     }
 

@@ -11,7 +11,7 @@ pub mod shaders;
 
 pub use device::{Gpu, ADAPTER_ENV};
 pub use frame::{Acceleration, Prepared};
-pub use output::{read_pfm, write_image, Format, Image, PngBits};
+pub use output::{read_pfm, write_atomically, write_image, Format, Image, PngBits};
 pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
 
 /// Everything that can go wrong on the GPU side, one line each.

@@ -96,35 +96,38 @@ pub enum PngBits {
     Sixteen,
 }
 
-/// Writes `image` to `path` in the format its extension names. The file is
-/// written beside its destination under a temporary name and renamed into place,
-/// so a failure never leaves a truncated file or harms an existing one.
+/// Writes `image` to `path` in the format its extension names, atomically
+/// (see [`write_atomically`]).
 pub fn write_image(image: &Image, path: &Path, bits: PngBits) -> Result<(), GpuError> {
     let format = Format::from_path(path)?;
     let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    match (format, bits) {
+        (Format::Png, PngBits::Eight) => image.to_rgb8().write_to(&mut bytes, image::ImageFormat::Png),
+        (Format::Png, PngBits::Sixteen) => image.to_rgb16().write_to(&mut bytes, image::ImageFormat::Png),
+        (Format::Exr, _) => image.to_rgb32f().write_to(&mut bytes, image::ImageFormat::OpenExr),
+        (Format::Pfm, _) => write_pfm(image, &mut bytes).map_err(image::ImageError::IoError),
+    }
+    .map_err(|e| fail(&e))?;
+    write_atomically(path, bytes.get_ref()).map_err(|e| fail(&e))
+}
+
+/// Writes `bytes` beside `path` under a temporary name and renames the file into
+/// place, so a failure never leaves a truncated file or harms an existing one.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
     let mut builder = tempfile::Builder::new();
     builder.prefix(".glint-").suffix(".tmp");
-    // Temporary files are private by default; the image gets ordinary permissions.
+    // Temporary files are private by default; the result gets ordinary permissions.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let mut tmp = builder.tempfile_in(dir).map_err(|e| fail(&e))?;
-    {
-        let mut writer = std::io::BufWriter::new(tmp.as_file_mut());
-        match (format, bits) {
-            (Format::Png, PngBits::Eight) => image.to_rgb8().write_to(&mut writer, image::ImageFormat::Png),
-            (Format::Png, PngBits::Sixteen) => image.to_rgb16().write_to(&mut writer, image::ImageFormat::Png),
-            (Format::Exr, _) => image.to_rgb32f().write_to(&mut writer, image::ImageFormat::OpenExr),
-            (Format::Pfm, _) => write_pfm(image, &mut writer).map_err(image::ImageError::IoError),
-        }
-        .map_err(|e| fail(&e))?;
-        writer.flush().map_err(|e| fail(&e))?;
-    }
-    tmp.as_file().sync_all().map_err(|e| fail(&e))?;
-    tmp.persist(path).map_err(|e| fail(&e.error))?;
+    let mut tmp = builder.tempfile_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }
 

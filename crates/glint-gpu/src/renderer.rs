@@ -292,24 +292,9 @@ impl Renderer {
         let mut y = 0;
         while y < height {
             let band = rows.min(height - y);
-            let globals = Globals {
-                tile_origin: [0, y],
-                sample_index,
-                seed: options.seed,
-                sample_count: if options.view.is_primary_only() { 1 } else { options.spp },
-                pixel_filter: options.filter as u32,
-                view: options.view as u32,
-                ..scene.globals
-            };
-            self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
             let mut encoder = self.device.create_command_encoder(&Default::default());
             encoder.clear_buffer(&scene.stats, 0, None);
-            {
-                let mut pass = encoder.begin_compute_pass(&Default::default());
-                pass.set_pipeline(&self.trace);
-                pass.set_bind_group(0, &scene.trace_bind, &[]);
-                pass.dispatch_workgroups(width.div_ceil(8), band.div_ceil(8), 1);
-            }
+            self.encode_band(scene, sample_index, options, y..y + band, &mut encoder);
             encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_BYTES);
             let start = Instant::now();
             self.queue.submit([encoder.finish()]);
@@ -323,6 +308,32 @@ impl Renderer {
             }
         }
         Ok(stats)
+    }
+
+    /// Sets the globals for sample `sample_index` over `rows` and records the
+    /// dispatch that traces them.
+    pub(crate) fn encode_band(
+        &self,
+        scene: &SceneBuffers,
+        sample_index: u32,
+        options: &RenderOptions,
+        rows: std::ops::Range<u32>,
+        encoder: &mut wgpu::CommandEncoder,
+    ) {
+        let globals = Globals {
+            tile_origin: [0, rows.start],
+            sample_index,
+            seed: options.seed,
+            sample_count: if options.view.is_primary_only() { 1 } else { options.spp },
+            pixel_filter: options.filter as u32,
+            view: options.view as u32,
+            ..scene.globals
+        };
+        self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&self.trace);
+        pass.set_bind_group(0, &scene.trace_bind, &[]);
+        pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
     }
 
     /// Turns the accumulated samples into display values (tone mapped, sRGB) and
@@ -432,7 +443,7 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
 
 /// Creates a compute pipeline inside an error scope, so a shader that the driver
 /// rejects fails here, loudly, instead of later reading back zeros.
-fn create_pipeline(
+pub(crate) fn create_pipeline(
     device: &wgpu::Device,
     source: &ShaderSource,
     files: &[&'static str],

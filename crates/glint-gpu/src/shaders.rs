@@ -10,56 +10,40 @@ use std::path::{Path, PathBuf};
 
 use crate::GpuError;
 
-/// The files of the trace kernel, in order.
-pub const TRACE_FILES: &[&str] = &[
-    "types.wgsl",
-    "bindings.wgsl",
-    "camera.wgsl",
-    "sample.wgsl",
-    "sphere.wgsl",
-    "triangle.wgsl",
-    "polygon.wgsl",
-    "cone.wgsl",
-    "primitive.wgsl",
-    "bvh.wgsl",
-    "reflect.wgsl",
-    "refract.wgsl",
-    "shadow.wgsl",
-    "shade.wgsl",
-    "trace.wgsl",
-];
-
-/// The files of the resolve kernel (accumulated samples → display values).
-pub const RESOLVE_FILES: &[&str] = &["resolve.wgsl"];
-
-/// The files of the viewer's present kernel: the resolve, written into a texture.
-pub const PRESENT_FILES: &[&str] = &["resolve.wgsl", "present.wgsl"];
-
-macro_rules! embed {
-    ($($name:literal),* $(,)?) => {
-        &[$(($name, include_str!(concat!("../../../shaders/", $name)))),*]
+/// Declares each kernel's file list and embeds every listed file, so a file
+/// is named once.
+macro_rules! kernels {
+    ($($(#[$doc:meta])* $kernel:ident = [$($name:literal),* $(,)?];)*) => {
+        $($(#[$doc])* pub const $kernel: &[&str] = &[$($name),*];)*
+        const EMBEDDED: &[(&str, &str)] =
+            &[$($(($name, include_str!(concat!("../../../shaders/", $name))),)*)*];
     };
 }
 
-const EMBEDDED: &[(&str, &str)] = embed!(
-    "types.wgsl",
-    "bindings.wgsl",
-    "camera.wgsl",
-    "sample.wgsl",
-    "sphere.wgsl",
-    "triangle.wgsl",
-    "polygon.wgsl",
-    "cone.wgsl",
-    "primitive.wgsl",
-    "bvh.wgsl",
-    "reflect.wgsl",
-    "refract.wgsl",
-    "shadow.wgsl",
-    "shade.wgsl",
-    "trace.wgsl",
-    "resolve.wgsl",
-    "present.wgsl",
-);
+kernels! {
+    /// The files of the trace kernel, in order.
+    TRACE_FILES = [
+        "types.wgsl",
+        "bindings.wgsl",
+        "camera.wgsl",
+        "sample.wgsl",
+        "sphere.wgsl",
+        "triangle.wgsl",
+        "polygon.wgsl",
+        "cone.wgsl",
+        "primitive.wgsl",
+        "bvh.wgsl",
+        "reflect.wgsl",
+        "refract.wgsl",
+        "shadow.wgsl",
+        "shade.wgsl",
+        "trace.wgsl",
+    ];
+    /// The files of the resolve kernel (accumulated samples → display values).
+    RESOLVE_FILES = ["resolve.wgsl"];
+    /// The files of the viewer's present kernel: the resolve, written into a texture.
+    PRESENT_FILES = ["resolve.wgsl", "present.wgsl"];
+}
 
 /// Where the WGSL files come from.
 #[derive(Debug, Clone)]

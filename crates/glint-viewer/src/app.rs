@@ -815,7 +815,7 @@ impl ViewerApp {
         }
         let result = glint_scene::toml_write::to_string(&scene)
             .map_err(one_line)
-            .and_then(|text| write_atomically(&path, text.as_bytes()).map_err(|e| one_line(format!("{}: {e}", path.display()))));
+            .and_then(|text| glint_gpu::write_atomically(&path, text.as_bytes()).map_err(|e| one_line(format!("{}: {e}", path.display()))));
         self.notice = Some(match result {
             Ok(()) => (format!("saved {}", path.display()), false),
             Err(e) => (e, true),
@@ -1001,22 +1001,3 @@ impl eframe::App for ViewerApp {
     }
 }
 
-/// Writes `bytes` beside `path` under a temporary name and renames it into
-/// place, so a failure never leaves a truncated file.
-fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    use std::io::Write;
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".glint-").suffix(".tmp");
-    // Temporary files are private; the scene file gets ordinary permissions.
-    #[cfg(unix)]
-    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let mut tmp = builder.tempfile_in(dir)?;
-    tmp.write_all(bytes)?;
-    tmp.as_file().sync_all()?;
-    tmp.persist(path).map_err(|e| e.error)?;
-    Ok(())
-}
