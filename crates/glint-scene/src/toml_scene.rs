@@ -145,63 +145,42 @@ impl<'de> Deserialize<'de> for V3 {
     }
 }
 
+/// Reads one number (for all three components) or three numbers, all finite.
+struct SplatOrTriple(&'static str);
+
+impl<'de> Visitor<'de> for SplatOrTriple {
+    type Value = Vec3;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.0)
+    }
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Vec3, E> {
+        Ok(Vec3::splat(finite(v)?))
+    }
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Vec3, E> {
+        self.visit_f64(v as f64)
+    }
+    fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
+        let mut c = [0.0f32; 3];
+        for (i, slot) in c.iter_mut().enumerate() {
+            let v: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
+            *slot = finite(v)?;
+        }
+        if seq.next_element::<de::IgnoredAny>()?.is_some() {
+            return Err(de::Error::invalid_length(4, &self));
+        }
+        Ok(Vec3::from(c))
+    }
+}
+
 impl<'de> Deserialize<'de> for Scale {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct ScaleVisitor;
-        impl<'de> Visitor<'de> for ScaleVisitor {
-            type Value = Vec3;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a scale: a number or [sx, sy, sz]")
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Vec3, E> {
-                Ok(Vec3::splat(finite(v)?))
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Vec3, E> {
-                self.visit_f64(v as f64)
-            }
-            fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
-                let mut c = [0.0f32; 3];
-                for (i, slot) in c.iter_mut().enumerate() {
-                    let v: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
-                    *slot = finite(v)?;
-                }
-                if seq.next_element::<de::IgnoredAny>()?.is_some() {
-                    return Err(de::Error::invalid_length(4, &self));
-                }
-                Ok(Vec3::from(c))
-            }
-        }
-        d.deserialize_any(ScaleVisitor).map(Scale)
+        d.deserialize_any(SplatOrTriple("a scale: a number or [sx, sy, sz]")).map(Scale)
     }
 }
 
 impl<'de> Deserialize<'de> for Rgb {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct RgbVisitor;
-        impl<'de> Visitor<'de> for RgbVisitor {
-            type Value = Vec3;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a colour: [r, g, b] or a single number")
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Vec3, E> {
-                Ok(Vec3::splat(finite(v)?))
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Vec3, E> {
-                self.visit_f64(v as f64)
-            }
-            fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec3, A::Error> {
-                let mut c = [0.0f32; 3];
-                for (i, slot) in c.iter_mut().enumerate() {
-                    let v: f64 = seq.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &self))?;
-                    *slot = finite(v)?;
-                }
-                if seq.next_element::<de::IgnoredAny>()?.is_some() {
-                    return Err(de::Error::invalid_length(4, &self));
-                }
-                Ok(Vec3::from(c))
-            }
-        }
-        let c = d.deserialize_any(RgbVisitor)?;
+        let c = d.deserialize_any(SplatOrTriple("a colour: [r, g, b] or a single number"))?;
         if c.min_element() < 0.0 {
             return Err(de::Error::custom("colour components must not be negative"));
         }
