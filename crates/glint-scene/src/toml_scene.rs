@@ -491,13 +491,23 @@ impl Builder<'_> {
         let normal_matrix = DMat3::from_mat4(transform).inverse().transpose();
         let point = |p: Vec3| transform.transform_point3(p.as_dvec3()).as_vec3();
         let normal = |n: Vec3| (normal_matrix * n.as_dvec3()).normalize().as_vec3();
+        // A mirroring transform reverses the winding; swapping two vertices keeps
+        // each face's normal on the side its vertex normals (and the file) say.
+        let mirrored = DMat3::from_mat4(transform).determinant() < 0.0;
         for part in &cached.mesh.parts {
             let mut shapes = Vec::with_capacity(part.triangles.len());
             for t in &part.triangles {
                 let Shape::Triangle { vertices, normals } = t else {
                     unreachable!("meshes hold only triangles, found {t:?}");
                 };
-                let vertices = vertices.map(point);
+                let mut vertices = vertices.map(point);
+                let mut normals = *normals;
+                if mirrored {
+                    vertices.swap(1, 2);
+                    if let Some(n) = &mut normals {
+                        n.swap(1, 2);
+                    }
+                }
                 if !vertices.iter().all(|v| v.is_finite()) {
                     return Err(self.error_at(object, "object: the transform takes the mesh beyond the range of 32-bit floats"));
                 }
@@ -640,6 +650,9 @@ impl Builder<'_> {
                 return Err(self.error_at(a, format!("attenuation: unknown form `{other}`, expected `none`, `inverse_square` or `polynomial`")));
             }
         };
+        if let (LightKind::Directional { .. }, Some(a)) = (kind, &def.attenuation) {
+            return Err(self.error_at(a, "attenuation: a directional light has no distance to attenuate over"));
+        }
         if let (Some(c), Attenuation::None | Attenuation::InverseSquare) = (&def.coefficients, attenuation) {
             return Err(self.error_at(c, "coefficients: only polynomial attenuation takes coefficients"));
         }
@@ -974,6 +987,7 @@ base_radius = 0.5
             ("[[object]]\ntype = \"polygon\"\nvertices = [[0,0,0],[1,0,0],[1,1,0],[0,1,1]]\n", 12, "coplanar"),
             ("[render]\nmax_depth = 1000\n", 11, "max_depth"),
             ("[[light]]\ntype = \"spotlight\"\nposition = [0,0,0]\n", 11, "spotlight"),
+            ("[[light]]\ntype = \"directional\"\ndirection = [0,-1,0]\nattenuation = \"inverse_square\"\n", 13, "directional"),
         ] {
             let e = error(extra);
             assert!(e.starts_with(&format!("test.toml:{line}:")), "{e}");
@@ -1051,6 +1065,18 @@ base_radius = 0.5
 
         fn close(a: Vec3, b: Vec3) -> bool {
             (a - b).abs().max_element() < 1e-5
+        }
+
+        #[test]
+        fn mirroring_transforms_keep_faces_and_vertex_normals_on_one_side() {
+            let dir = tempfile::tempdir().unwrap();
+            write(dir.path(), "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n");
+            for transform in ["scale = [-1, 1, 1]", "scale = [1, 1, 1]", "matrix = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, -1, 0], [0, 0, 0, 1]]"] {
+                let s = scene_file(dir.path(), &format!("[[object]]\ntype = \"mesh\"\npath = \"tri.obj\"\n{transform}\n")).unwrap();
+                let Shape::Triangle { vertices: [a, b, c], normals: Some(n) } = &s.objects[0].shapes[0] else { panic!() };
+                let face = (*b - *a).cross(*c - *a);
+                assert!(n.iter().all(|n| face.dot(*n) > 0.0), "{transform}: face {face} against normals {n:?}");
+            }
         }
 
         #[test]

@@ -119,8 +119,10 @@ impl Writer {
             }
             self.vec("color", l.color, &what("colour"))?;
             self.num("intensity", l.intensity, &what("intensity"))?;
-            match l.attenuation {
-                Attenuation::None => self.line("attenuation = \"none\""),
+            // Only point lights attenuate: a directional light has no distance.
+            let attenuation = if matches!(l.kind, LightKind::Point { .. }) { l.attenuation } else { Attenuation::None };
+            match attenuation {
+                Attenuation::None => {}
                 Attenuation::InverseSquare => self.line("attenuation = \"inverse_square\""),
                 Attenuation::Polynomial { c1, c2, c3 } => {
                     self.line("attenuation = \"polynomial\"");
