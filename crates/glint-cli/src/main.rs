@@ -65,9 +65,17 @@ impl From<glint_gpu::GpuError> for Failure {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
+        // --help and --version print in full; a usage error is one line, like
+        // every other failure.
+        Err(e) if !e.use_stderr() => {
             let _ = e.print();
-            return ExitCode::from(if e.use_stderr() { exit::USAGE } else { 0 });
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or_default();
+            eprintln!("glint: {}", first.strip_prefix("error: ").unwrap_or(first));
+            return ExitCode::from(exit::USAGE);
         }
     };
     let result = match cli.command {

@@ -249,6 +249,7 @@ fn absurd_command_line_values_are_refused() {
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{extra:?}: {stderr}");
         assert!(stderr.contains(option), "{extra:?}: the message does not name {option}: {stderr}");
+        assert!(stderr.starts_with("glint: ") && stderr.trim_end().lines().count() == 1, "{extra:?}: not one line: {stderr}");
         assert!(!stderr.contains("panicked"), "{extra:?}: {stderr}");
         assert!(entries(dir.path()).is_empty(), "{extra:?} created {:?}", entries(dir.path()));
     }
