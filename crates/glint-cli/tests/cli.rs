@@ -175,3 +175,16 @@ fn nff_scenes_render_with_either_angle_reading() {
     // Read edge to edge, the same angle is a narrower view: the sphere looks bigger.
     assert!(centre_pixels[1] > centre_pixels[0], "{centre_pixels:?}");
 }
+
+#[test]
+fn an_image_beyond_the_device_limits_names_the_limit_and_the_need() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("huge.png");
+    let o = glint(&["render", scenes().join("showcase.toml").to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "16384", "--height", "16384"]);
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("the accumulation image") && err.contains(&(16384u64 * 16384 * 16).to_string()), "{err}");
+    assert!(err.contains("max_storage_buffer_binding_size") || err.contains("max_buffer_size"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
