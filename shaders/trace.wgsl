@@ -125,7 +125,7 @@ fn trace_main(
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let pixel = gid.xy + globals.tile_origin;
-    if pixel.x < globals.width && pixel.y < globals.height {
+    if pixel.x < globals.width && pixel.y < min(globals.height, globals.row_end) {
         let eye = camera_ray(vec2<f32>(pixel) + sample_offset(pixel));
         var color: vec3<f32>;
         if globals.view == VIEW_SHADED {

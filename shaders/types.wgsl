@@ -81,8 +81,10 @@ struct Globals {
     // 0 means an open-ended progressive render (jittered, unstratified).
     sample_count: u32,
     pixel_filter: u32,
+    // The dispatch covers rows tile_origin.y .. row_end: whole workgroups may
+    // reach past it, and those rows belong to the next band.
+    row_end: u32,
     _pad0: u32,
-    _pad1: u32,
 }
 
 struct GpuLight {

@@ -4,6 +4,7 @@
 
 mod support;
 
+use std::io::Write;
 use glint_gpu::{Acceleration, RenderOptions};
 use glint_scene::gpu_types::View;
 
@@ -62,5 +63,6 @@ fn gpu_agrees_with_the_cpu_reference_on_random_scenes() {
         compared += pixels;
         summary.push(off);
     }
-    println!("differential: {SEEDS} random scenes, {compared} pixels compared, edge pixels off per scene: {summary:?}");
+    // Written past the test harness's capture, so every run shows the summary.
+    let _ = writeln!(std::io::stderr(), "differential: {SEEDS} random scenes, {compared} pixels compared, edge pixels off per scene: {summary:?}");
 }

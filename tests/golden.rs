@@ -8,6 +8,7 @@
 
 mod support;
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use glint_gpu::{Acceleration, PngBits, RenderOptions};
@@ -124,6 +125,7 @@ fn every_scene_matches_its_golden_image() {
             ));
         }
     }
-    println!("golden: {} images compared, worst mean FLIP {worst:.5}, {} failed", scenes.len(), failures.len());
+    // Written past the test harness's capture, so every run shows the summary.
+    let _ = writeln!(std::io::stderr(), "golden: {} images compared, worst mean FLIP {worst:.5}, {} failed", scenes.len(), failures.len());
     assert!(failures.is_empty(), "golden images differ:\n{}", failures.join("\n"));
 }

@@ -87,6 +87,13 @@ fn tiled_and_single_dispatch_renders_are_identical() {
     assert_eq!(single.linear, tiled.linear);
     assert_eq!(single.linear, adaptive.linear);
     assert_eq!((s1, s1), (s2, s3));
+    // Bands that are no multiple of the 8-row workgroup must not trace the rows
+    // their last workgroups reach into: every pixel gets each sample once.
+    for rows in [5, 13] {
+        let (odd, stats) = render_options(&scene, Acceleration::Bvh, RenderOptions { band_rows: Some(rows), ..base });
+        assert_eq!(stats.eye_hit + stats.eye_miss, 90 * 50 * 2, "bands of {rows} rows");
+        assert_eq!(single.linear, odd.linear, "bands of {rows} rows");
+    }
 }
 
 #[test]

@@ -82,7 +82,7 @@ fn host_structs_match_wgsl() {
         Globals {
             camera, background, width, ambient, height, depth_cue_color, light_count, depth_cue,
             max_depth, cutoff, flags, view, tile_origin, sample_index, seed, sample_count, pixel_filter,
-            _pad0, _pad1
+            row_end, _pad0
         }
     );
     layout!(m, GpuLight { position, kind, radiance, attenuation, coefficients });

@@ -287,7 +287,8 @@ impl Renderer {
         let (width, height) = (scene.width, scene.height);
         let stats_readback = self.readback_buffer(STAT_BYTES);
         let mut stats = RayStats::default();
-        let adaptive_rows = (self.band_pixels.load(Ordering::Relaxed) / width).max(8);
+        // Whole workgroups of 8 rows, so no lane of a band idles past its end.
+        let adaptive_rows = (self.band_pixels.load(Ordering::Relaxed) / width).max(8) / 8 * 8;
         let mut rows = options.band_rows.unwrap_or(adaptive_rows).clamp(1, height);
         let mut y = 0;
         while y < height {
@@ -322,6 +323,7 @@ impl Renderer {
     ) {
         let globals = Globals {
             tile_origin: [0, rows.start],
+            row_end: rows.end,
             sample_index,
             seed: options.seed,
             sample_count: if options.view.is_primary_only() { 1 } else { options.spp },

@@ -115,8 +115,9 @@ pub struct Globals {
     /// Samples per pixel of the render (1: the pixel centre; 0: open-ended).
     pub sample_count: u32,
     pub pixel_filter: u32,
+    /// The last row (exclusive) of the band a dispatch covers.
+    pub row_end: u32,
     pub _pad0: u32,
-    pub _pad1: u32,
 }
 
 #[repr(C)]
@@ -359,7 +360,7 @@ pub fn globals(scene: &Scene, width: u32, height: u32, light_count: u32) -> Glob
         seed: 0,
         sample_count: 1,
         pixel_filter: Filter::Box as u32,
+        row_end: height,
         _pad0: 0,
-        _pad1: 0,
     }
 }
