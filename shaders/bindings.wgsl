@@ -2,7 +2,7 @@
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
-@group(0) @binding(2) var<storage, read> nodes: array<Node>;
+@group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
 @group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
 @group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
 // Polygon vertices and triangle vertex normals (xyz).

@@ -1,11 +1,14 @@
 // Dispatch on primitive kind: intersection and surface normals.
 
-fn intersect_prim(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
-    switch prim_kind(p) {
-        case PRIM_SPHERE: { return sphere_intersect(p, ray, t_min, t_max); }
-        case PRIM_TRIANGLE: { return triangle_intersect(p, ray, t_min, t_max); }
-        case PRIM_POLYGON: { return polygon_intersect(p, ray, t_min, t_max); }
-        default: { return cone_intersect(p, ray, t_min, t_max); }
+// Takes the primitive's index, not its value: each case then loads only the
+// fields its kind uses (a load per SIMD lane is what a software rasteriser
+// pays most for).
+fn intersect_prim(i: u32, ray: Ray, t_min: f32, t_max: f32) -> f32 {
+    switch prims[i].kind_material & 0xffu {
+        case PRIM_SPHERE: { return sphere_intersect(prims[i], ray, t_min, t_max); }
+        case PRIM_TRIANGLE: { return triangle_intersect(prims[i], ray, t_min, t_max); }
+        case PRIM_POLYGON: { return polygon_intersect(prims[i], ray, t_min, t_max); }
+        default: { return cone_intersect(prims[i], ray, t_min, t_max); }
     }
 }
 

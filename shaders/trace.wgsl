@@ -1,6 +1,7 @@
 // The trace kernel: one sample per pixel per dispatch, Whitted's ray tree walked
 // with an explicit stack (WGSL has no recursion). Each pending ray carries the
-// weight its colour contributes to the pixel.
+// weight its colour contributes to the pixel. The band and ray-count helpers
+// here serve the primary kernel too.
 
 const RAY_STACK: u32 = 17u; // MAX_DEPTH_LIMIT + 1: each level leaves one sibling pending
 const WORKGROUP: u32 = 64u;
@@ -93,28 +94,29 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
     return color;
 }
 
-// The values of the debug views and AOVs, from the primary ray alone.
-fn primary_view(eye: Ray) -> vec3<f32> {
-    let hit = traverse(eye, 0.0, MISS, false, false);
-    count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
-    if globals.view == VIEW_HEATMAP {
-        return vec3<f32>(f32(hit.nodes));
-    }
-    if hit.t == MISS {
-        switch globals.view {
-            case VIEW_DEPTH: { return vec3<f32>(MISS); }
-            case VIEW_ID: { return vec3<f32>(-1.0); }
-            default: { return vec3<f32>(0.0); }
+// The pixel an invocation traces in the current band, if the band covers one.
+fn band_pixel(gid: vec3<u32>) -> vec2<u32> {
+    return gid.xy + globals.tile_origin;
+}
+
+fn in_band(pixel: vec2<u32>) -> bool {
+    return pixel.x < globals.width && pixel.y < min(globals.height, globals.row_end);
+}
+
+fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
+    let index = pixel.y * globals.width + pixel.x;
+    accum[index] += vec4<f32>(color, 1.0);
+}
+
+// Ray counts go to this workgroup's slot: a workgroup barrier to sum them
+// first would cost more than the few uncontended atomics.
+fn flush_ray_counts(wid: vec3<u32>, groups: vec3<u32>) {
+    let slots = arrayLength(&stats) / STAT_COUNT;
+    let base = ((wid.y * groups.x + wid.x) % slots) * STAT_COUNT;
+    for (var k = 0u; k < STAT_COUNT; k++) {
+        if local_stats[k] != 0u {
+            atomicAdd(&stats[base + k], local_stats[k]);
         }
-    }
-    let p = prims[hit.prim];
-    let m = materials[prim_material(p)];
-    switch globals.view {
-        case VIEW_NORMAL: { return surface_at(p, eye, hit.t).geometric; }
-        case VIEW_DEPTH: { return vec3<f32>(hit.t); }
-        case VIEW_ALBEDO: { return m.color; }
-        case VIEW_ID: { return vec3<f32>(f32(p.object)); }
-        default: { return diffuse_only(surface_at(p, eye, hit.t), m); }
     }
 }
 
@@ -124,26 +126,9 @@ fn trace_main(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let pixel = gid.xy + globals.tile_origin;
-    if pixel.x < globals.width && pixel.y < min(globals.height, globals.row_end) {
-        let eye = camera_ray(vec2<f32>(pixel) + sample_offset(pixel));
-        var color: vec3<f32>;
-        if globals.view == VIEW_SHADED {
-            color = trace_pixel(eye);
-        } else {
-            color = primary_view(eye);
-        }
-        let index = pixel.y * globals.width + pixel.x;
-        accum[index] += vec4<f32>(color, 1.0);
+    let pixel = band_pixel(gid);
+    if in_band(pixel) {
+        accumulate(pixel, trace_pixel(camera_ray(vec2<f32>(pixel) + sample_offset(pixel))));
     }
-
-    // Ray counts go to this workgroup's slot: a workgroup barrier to sum them
-    // first would cost more than the few uncontended atomics.
-    let slots = arrayLength(&stats) / STAT_COUNT;
-    let base = ((wid.y * groups.x + wid.x) % slots) * STAT_COUNT;
-    for (var k = 0u; k < STAT_COUNT; k++) {
-        if local_stats[k] != 0u {
-            atomicAdd(&stats[base + k], local_stats[k]);
-        }
-    }
+    flush_ray_counts(wid, groups);
 }

@@ -1,5 +1,5 @@
 // Structs shared by the kernels. Each has a Rust twin of the same name in
-// crates/glint-scene/src/gpu_types.rs (or bvh.rs for Node); a naga test checks
+// crates/glint-scene/src/gpu_types.rs (or gpu_bvh.rs for GpuNode); a naga test checks
 // that sizes and member offsets agree.
 
 const PROJECTION_PERSPECTIVE: u32 = 0u;
@@ -122,12 +122,23 @@ struct GpuPrim {
     count: u32,
 }
 
-struct Node {
-    min: vec3<f32>,
-    left_or_first: u32,
-    max: vec3<f32>,
-    count: u32,
+// An interior BVH node: both children's boxes on an 8-bit grid over this node's
+// box, and the children (crates/glint-scene/src/gpu_bvh.rs has the details).
+struct GpuNode {
+    origin: vec3<f32>,
+    // Per axis, the biased exponent of the grid's cell size: byte a for axis a.
+    exponents: u32,
+    // Per axis: bytes 0, 1 the left child's low and high cell, bytes 2, 3 the right's.
+    quantized: vec3<u32>,
+    left: u32,
+    right: u32,
 }
+
+// A child reference with this bit is a leaf: primitives first .. first + count,
+// first in bits 0-27, count - 1 in bits 28-30.
+const LEAF: u32 = 0x80000000u;
+// No child, or the end of a traversal.
+const NO_NODE: u32 = 0xffffffffu;
 
 struct Ray {
     origin: vec3<f32>,

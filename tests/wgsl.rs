@@ -4,7 +4,7 @@
 use std::mem::{offset_of, size_of};
 
 use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
-use glint_scene::bvh::Node;
+use glint_scene::gpu_bvh::GpuNode;
 use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals};
 
 fn trace_module() -> naga::Module {
@@ -93,5 +93,5 @@ fn host_structs_match_wgsl() {
         }
     );
     layout!(m, GpuPrim { a, b, c, kind_material, object, first, count });
-    layout!(m, Node { min, left_or_first, max, count });
+    layout!(m, GpuNode { origin, exponents, quantized, left, right });
 }

@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, View, PROJECTION_ORTHOGRAPHIC};
 
-use crate::renderer::{create_pipeline, STAT_BYTES};
+use crate::renderer::{create_pipelines, STAT_BYTES};
 use crate::shaders::{ShaderSource, PRESENT_FILES};
 use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
 
@@ -93,7 +93,7 @@ impl SceneBuffers {
 impl Renderer {
     /// Compiles the present kernel from `source`.
     pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
-        let pipeline = create_pipeline(&self.device, source, PRESENT_FILES, "present_main")?;
+        let [pipeline] = create_pipelines(&self.device, source, PRESENT_FILES, ["present_main"], None)?;
         Ok(PresentPipeline { pipeline })
     }
 
@@ -210,7 +210,7 @@ impl Renderer {
     /// `y`) hits first (pixels from the top-left corner, so a pixel's centre is
     /// at i + 0.5), or `None` on a miss.
     ///
-    /// The trace kernel runs in the object-id view on a one-pixel image whose
+    /// The primary kernel runs in the object-id view on a one-pixel image whose
     /// camera window shrinks to that ray. The pixel's value lands in the first
     /// accumulation slot, which is saved before and restored after, so a
     /// progressive render carries on undisturbed.
@@ -257,7 +257,7 @@ impl Renderer {
         encoder.clear_buffer(&scene.accum, 0, Some(PIXEL_BYTES));
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.trace);
+            pass.set_pipeline(&self.primary);
             pass.set_bind_group(0, &scene.trace_bind, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         }

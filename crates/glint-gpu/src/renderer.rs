@@ -117,7 +117,13 @@ struct ResolveParams {
 pub struct Renderer {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
-    pub(crate) trace: wgpu::ComputePipeline,
+    /// The full Whitted render.
+    trace: wgpu::ComputePipeline,
+    /// The primary ray alone, for the debug views, AOVs and picking: a kernel
+    /// without the ray tree compiles to far leaner code.
+    pub(crate) primary: wgpu::ComputePipeline,
+    /// The bind group layout `trace` and `primary` share.
+    scene_layout: wgpu::BindGroupLayout,
     pub(crate) resolve: wgpu::ComputePipeline,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
@@ -143,14 +149,21 @@ pub struct SceneBuffers {
 
 impl Renderer {
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
-        let trace = create_pipeline(&device, source, TRACE_FILES, "trace_main")?;
-        let resolve = create_pipeline(&device, source, RESOLVE_FILES, "resolve_main")?;
+        let scene_layout = scene_bind_group_layout(&device);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("scene"),
+            bind_group_layouts: &[Some(&scene_layout)],
+            immediate_size: 0,
+        });
+        let [trace, primary] =
+            create_pipelines(&device, source, TRACE_FILES, ["trace_main", "primary_main"], Some(&pipeline_layout))?;
+        let [resolve] = create_pipelines(&device, source, RESOLVE_FILES, ["resolve_main"], None)?;
         let lost = Arc::new(Mutex::new(None));
         let record = Arc::clone(&lost);
         device.set_device_lost_callback(move |reason, message| {
             *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
         });
-        Ok(Self { device, queue, trace, resolve, lost, band_pixels: AtomicU32::new(8 * 512) })
+        Ok(Self { device, queue, trace, primary, scene_layout, resolve, lost, band_pixels: AtomicU32::new(8 * 512) })
     }
 
     pub fn device(&self) -> &wgpu::Device {
@@ -220,7 +233,7 @@ impl Renderer {
             .collect();
         let trace_bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("trace"),
-            layout: &self.trace.get_bind_group_layout(0),
+            layout: &self.scene_layout,
             entries: &entries,
         });
         let scene_bytes = arrays[..5].iter().map(|(_, b)| b.len() as u64).sum();
@@ -333,7 +346,7 @@ impl Renderer {
         };
         self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
         let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&self.trace);
+        pass.set_pipeline(if options.view.is_primary_only() { &self.primary } else { &self.trace });
         pass.set_bind_group(0, &scene.trace_bind, &[]);
         pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
     }
@@ -443,33 +456,76 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
     pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
 }
 
-/// Creates a compute pipeline inside an error scope, so a shader that the driver
-/// rejects fails here, loudly, instead of later reading back zeros.
-pub(crate) fn create_pipeline(
+/// The resources of the trace and primary kernels (shaders/bindings.wgsl): the
+/// globals, five read-only scene arrays, the accumulation image and the ray counts.
+fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+        count: None,
+    };
+    let read_only = wgpu::BufferBindingType::Storage { read_only: true };
+    let read_write = wgpu::BufferBindingType::Storage { read_only: false };
+    let entries = [
+        buffer(0, wgpu::BufferBindingType::Uniform),
+        buffer(1, read_only),
+        buffer(2, read_only),
+        buffer(3, read_only),
+        buffer(4, read_only),
+        buffer(5, read_only),
+        buffer(6, read_write),
+        buffer(7, read_write),
+    ];
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
+}
+
+/// Creates compute pipelines for `entries` of the kernel made of `files`, inside
+/// an error scope, so a shader that the driver rejects fails here, loudly,
+/// instead of later reading back zeros. With `layout` `None` each pipeline
+/// derives its own bind group layout.
+pub(crate) fn create_pipelines<const N: usize>(
     device: &wgpu::Device,
     source: &ShaderSource,
     files: &[&'static str],
-    entry: &str,
-) -> Result<wgpu::ComputePipeline, GpuError> {
+    entries: [&str; N],
+    layout: Option<&wgpu::PipelineLayout>,
+) -> Result<[wgpu::ComputePipeline; N], GpuError> {
     let composed = source.compose(files)?;
     composed.validate()?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(entry),
+    let descriptor = wgpu::ShaderModuleDescriptor {
+        label: Some(entries[0]),
         source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry),
-        layout: None,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
+    };
+    let module = match source {
+        // SAFETY: the embedded kernels are Glint's own. Every loop in them ends:
+        // BVH traversal pushes at most one node per level of a tree whose depth
+        // the builder bounds by the stack size, and every other loop runs over a
+        // count the host wrote. Every index stays in its array: node and
+        // primitive indices come from the same builder and packer. So wgpu's
+        // injected loop counters and index clamps, which cost the software
+        // rasteriser ~7% of traversal time, are not needed. Kernels read from a
+        // directory (the viewer's hot reload, possibly mid-edit) keep them.
+        ShaderSource::Embedded => unsafe {
+            device.create_shader_module_trusted(descriptor, wgpu::ShaderRuntimeChecks::unchecked())
+        },
+        ShaderSource::Dir(_) => device.create_shader_module(descriptor),
+    };
+    let pipelines = entries.map(|entry| {
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(entry),
+            layout,
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
     });
     if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Shader(format!("{entry}: {}", one_line(&e))));
+        return Err(GpuError::Shader(format!("{}: {}", entries.join(", "), one_line(&e))));
     }
-    Ok(pipeline)
+    Ok(pipelines)
 }
 
 /// An error and its causes on one line (wgpu's own display spans several).

@@ -21,7 +21,7 @@ macro_rules! kernels {
 }
 
 kernels! {
-    /// The files of the trace kernel, in order.
+    /// The files of the trace and primary kernels, in order.
     TRACE_FILES = [
         "types.wgsl",
         "bindings.wgsl",
@@ -38,6 +38,7 @@ kernels! {
         "shadow.wgsl",
         "shade.wgsl",
         "trace.wgsl",
+        "primary.wgsl",
     ];
     /// The files of the resolve kernel (accumulated samples → display values).
     RESOLVE_FILES = ["resolve.wgsl"];

@@ -4,7 +4,8 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-use crate::bvh::{Bvh, Node};
+use crate::bvh::Bvh;
+use crate::gpu_bvh::GpuNode;
 use crate::shape::polygon_normal;
 use crate::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
@@ -174,7 +175,7 @@ pub struct GpuPrim {
 #[derive(Debug, Clone)]
 pub struct GpuScene {
     pub prims: Vec<GpuPrim>,
-    pub nodes: Vec<Node>,
+    pub nodes: Vec<GpuNode>,
     pub materials: Vec<GpuMaterial>,
     pub lights: Vec<GpuLight>,
     /// Polygon vertices and triangle vertex normals, xyz + unused w.
@@ -259,7 +260,7 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> GpuScene {
     if lights.is_empty() {
         lights.push(Zeroable::zeroed());
     }
-    GpuScene { prims, nodes: bvh.nodes.clone(), materials, lights, points, light_count }
+    GpuScene { prims, nodes: bvh.gpu_nodes(), materials, lights, points, light_count }
 }
 
 pub fn pack_material(m: &crate::Material) -> GpuMaterial {

@@ -5,6 +5,7 @@
 pub mod bvh;
 pub mod camera;
 pub mod error;
+pub mod gpu_bvh;
 pub mod gpu_types;
 pub mod icosphere;
 pub mod light;
@@ -13,6 +14,8 @@ pub mod nff;
 pub mod obj;
 pub mod scene;
 pub mod shape;
+#[cfg(test)]
+mod test_rng;
 pub mod toml_scene;
 pub mod toml_write;
 
