@@ -12,3 +12,5 @@
 // Ray counts: STAT_COUNT counters per slot, one slot per workgroup (modulo the
 // slot count), so counting needs no barrier and atomics rarely contend.
 @group(0) @binding(7) var<storage, read_write> stats: array<atomic<u32>>;
+// The grids of the BVH's interior records, for the nodes traversal returns to.
+@group(0) @binding(8) var<storage, read> grids: array<GpuGrid>;

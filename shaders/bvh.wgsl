@@ -17,32 +17,39 @@ fn next_up(t: f32) -> f32 {
     return bitcast<f32>(bitcast<u32>(t) + 1u);
 }
 
-// Entry distance of the ray into the box, or MISS.
-fn box_entry(lo: vec3<f32>, hi: vec3<f32>, origin: vec3<f32>, inv_dir: vec3<f32>, t_max: f32) -> f32 {
-    let t0 = (lo - origin) * inv_dir;
-    let t1 = (hi - origin) * inv_dir;
-    let near = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z));
-    let far = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
+// Entry distance into a box from the distances to its near and far plane on
+// each axis, or MISS. A NaN distance (a ray in a box's face plane, 0·∞) drops
+// out of max and min, so such a ray counts as inside: the test stays conservative.
+fn slab_entry(t_near: vec3<f32>, t_far: vec3<f32>, t_max: f32) -> f32 {
+    let near = max(max(t_near.x, t_near.y), t_near.z);
+    let far = min(min(t_far.x, t_far.y), t_far.z);
     return select(MISS, max(near, 0.0), near <= far && far >= 0.0 && near <= t_max);
 }
 
-// The cell size of biased exponent byte `e` (bits 0-7), 2^(e - 127).
-fn cell_size(e: vec3<u32>) -> vec3<f32> {
-    return bitcast<vec3<f32>>((e & vec3<u32>(0xffu)) << vec3<u32>(23u));
+// A node's grid in registers: origin and biased cell exponents per axis.
+struct Grid {
+    origin: vec3<f32>,
+    exponents: vec3<u32>,
 }
 
-// Entry distances into both children of `node`; MISS for a missing child.
-fn child_entries(node: GpuNode, origin: vec3<f32>, inv_dir: vec3<f32>, t_max: f32) -> vec2<f32> {
-    let cell = cell_size(vec3<u32>(node.exponents, node.exponents >> 8u, node.exponents >> 16u));
-    let q = node.quantized;
-    let byte = vec3<u32>(0xffu);
-    let left_lo = node.origin + vec3<f32>(q & byte) * cell;
-    let left_hi = node.origin + vec3<f32>((q >> vec3<u32>(8u)) & byte) * cell;
-    let right_lo = node.origin + vec3<f32>((q >> vec3<u32>(16u)) & byte) * cell;
-    let right_hi = node.origin + vec3<f32>(q >> vec3<u32>(24u)) * cell;
-    let t_left = box_entry(left_lo, left_hi, origin, inv_dir, t_max);
-    let t_right = box_entry(right_lo, right_hi, origin, inv_dir, t_max);
-    return vec2<f32>(select(t_left, MISS, node.left == NO_NODE), select(t_right, MISS, node.right == NO_NODE));
+fn stored_grid(index: u32) -> Grid {
+    let g = grids[index];
+    return Grid(g.origin, vec3<u32>(g.exponents, g.exponents >> 8u, g.exponents >> 16u) & vec3<u32>(0xffu));
+}
+
+// The grid over box [lo, hi] as gpu_bvh.rs derives it: origin lo; per axis the
+// smallest power-of-two cell c with 254·c ≥ hi − lo, from the extent's bits
+// (for m·2^E, 1 ≤ m < 2: 2^(E−7) when m ≤ 254/128, else 2^(E−6)), at least 2^-100.
+fn derived_grid(lo: vec3<f32>, hi: vec3<f32>) -> Grid {
+    let bits = bitcast<vec3<u32>>(hi - lo) & vec3<u32>(0x7fffffffu);
+    let e = (bits >> vec3<u32>(23u)) + select(vec3<u32>(0u), vec3<u32>(1u), (bits & vec3<u32>(0x7fffffu)) > vec3<u32>(0x7e0000u));
+    return Grid(lo, clamp(e, vec3<u32>(34u), vec3<u32>(261u)) - vec3<u32>(7u));
+}
+
+// Corner bytes `shift` / 8 of `q` in world space: exact products, one rounding.
+fn decode(grid: Grid, q: vec3<u32>, shift: vec3<u32>) -> vec3<f32> {
+    let cell = bitcast<vec3<f32>>(grid.exponents << vec3<u32>(23u));
+    return grid.origin + vec3<f32>((q >> shift) & vec3<u32>(0xffu)) * cell;
 }
 
 // Closest hit in (t_min, t_max) when `any_hit` is false. With `any_hit`, a shadow
@@ -58,36 +65,53 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     var hit = Hit(MISS, 0u, vec3<f32>(1.0), 0u);
     var t_max = t_max_in;
     let inv_dir = 1.0 / ray.dir;
+    // Per axis, the corner byte of a quantised box the ray meets first (0 low,
+    // 8 high) and last: choosing the planes by the direction's sign saves the
+    // per-axis min and max of the textbook slab test.
+    let negative = inv_dir < vec3<f32>(0.0);
+    let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), negative);
+    let far_byte = select(vec3<u32>(8u), vec3<u32>(0u), negative);
     // Pending far children with their entry distances, so a pop needs no
     // second box test: it is skipped once a closer hit has been found.
     var stack_node: array<u32, BVH_STACK>;
     var stack_t: array<f32, BVH_STACK>;
     var top = 0u;
-    var index = 0u;
+    var index = globals.bvh_root;
+    var grid = stored_grid(0u);
     while index != NO_NODE {
         while (index & LEAF) == 0u {
             hit.nodes++;
             let node = nodes[index];
-            let t = child_entries(node, ray.origin, inv_dir, t_max);
-            let near_first = t.x <= t.y;
-            if min(t.x, t.y) == MISS {
-                index = pop(&stack_node, &stack_t, &top, t_max);
+            let left_near = decode(grid, node.quantized, near_byte);
+            let left_far = decode(grid, node.quantized, far_byte);
+            let right_near = decode(grid, node.quantized, near_byte + 16u);
+            let right_far = decode(grid, node.quantized, far_byte + 16u);
+            let t_left = slab_entry((left_near - ray.origin) * inv_dir, (left_far - ray.origin) * inv_dir, t_max);
+            let t_right = slab_entry((right_near - ray.origin) * inv_dir, (right_far - ray.origin) * inv_dir, t_max);
+            let first = node.children & ~(LEAF | RIGHT_LEAF);
+            let left = first | (node.children & LEAF);
+            let right = (first + 1u) | ((node.children << 1u) & LEAF);
+            if min(t_left, t_right) == MISS {
+                index = pop(&stack_node, &stack_t, &top, t_max, &grid);
             } else {
-                if max(t.x, t.y) != MISS {
-                    stack_node[top] = select(node.left, node.right, near_first);
-                    stack_t[top] = max(t.x, t.y);
+                let near_first = t_left <= t_right;
+                if max(t_left, t_right) != MISS {
+                    stack_node[top] = select(left, right, near_first);
+                    stack_t[top] = max(t_left, t_right);
                     top++;
                 }
-                index = select(node.right, node.left, near_first);
+                index = select(right, left, near_first);
+                let near = select(right_near, left_near, near_first);
+                let far = select(right_far, left_far, near_first);
+                grid = derived_grid(select(near, far, negative), select(far, near, negative));
             }
         }
         if index == NO_NODE {
             break;
         }
         hit.nodes++;
-        let first = index & 0x0fffffffu;
-        let end = first + ((index >> 28u) & 7u) + 1u;
-        for (var i = first; i < end; i++) {
+        let leaf = nodes[index & ~LEAF].quantized;
+        for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
             if !any_hit {
                 // Equal distances (coincident surfaces) go to the lower object
                 // id, so the winner does not depend on the order of visits.
@@ -113,22 +137,28 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 return hit;
             }
         }
-        index = pop(&stack_node, &stack_t, &top, t_max);
+        index = pop(&stack_node, &stack_t, &top, t_max, &grid);
     }
     return hit;
 }
 
-// The most recently pushed node still closer than `t_max`, or NO_NODE.
+// The most recently pushed node still closer than `t_max`, or NO_NODE; the
+// grid of an interior node returned to.
 fn pop(
     stack_node: ptr<function, array<u32, BVH_STACK>>,
     stack_t: ptr<function, array<f32, BVH_STACK>>,
     top: ptr<function, u32>,
     t_max: f32,
+    grid: ptr<function, Grid>,
 ) -> u32 {
     while *top > 0u {
         *top -= 1u;
         if (*stack_t)[*top] <= t_max {
-            return (*stack_node)[*top];
+            let index = (*stack_node)[*top];
+            if (index & LEAF) == 0u {
+                *grid = stored_grid(index);
+            }
+            return index;
         }
     }
     return NO_NODE;

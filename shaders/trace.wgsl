@@ -103,9 +103,15 @@ fn in_band(pixel: vec2<u32>) -> bool {
     return pixel.x < globals.width && pixel.y < min(globals.height, globals.row_end);
 }
 
+// The first sample of a render writes its pixel (the sum starts from zero), so
+// it need not read it: a load per lane saved.
 fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
     let index = pixel.y * globals.width + pixel.x;
-    accum[index] += vec4<f32>(color, 1.0);
+    if globals.sample_index == 0u {
+        accum[index] = vec4<f32>(color, 1.0);
+    } else {
+        accum[index] += vec4<f32>(color, 1.0);
+    }
 }
 
 // Ray counts go to this workgroup's slot: a workgroup barrier to sum them

@@ -1,5 +1,5 @@
 // Structs shared by the kernels. Each has a Rust twin of the same name in
-// crates/glint-scene/src/gpu_types.rs (or gpu_bvh.rs for GpuNode); a naga test checks
+// crates/glint-scene/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
 // that sizes and member offsets agree.
 
 const PROJECTION_PERSPECTIVE: u32 = 0u;
@@ -84,7 +84,8 @@ struct Globals {
     // The dispatch covers rows tile_origin.y .. row_end: whole workgroups may
     // reach past it, and those rows belong to the next band.
     row_end: u32,
-    _pad0: u32,
+    // The BVH record traversal starts from.
+    bvh_root: u32,
 }
 
 struct GpuLight {
@@ -122,22 +123,27 @@ struct GpuPrim {
     count: u32,
 }
 
-// An interior BVH node: both children's boxes on an 8-bit grid over this node's
-// box, and the children (crates/glint-scene/src/gpu_bvh.rs has the details).
+// A BVH record (crates/glint-scene/src/gpu_bvh.rs has the details). Interior:
+// bytes 2c and 2c + 1 of quantized[a] are child c's box on axis a in cells of
+// the node's grid, `children` the first child's index with LEAF set when it is a
+// leaf and RIGHT_LEAF when the second is. Leaf: quantized.x is the first
+// primitive, quantized.y the count.
 struct GpuNode {
-    origin: vec3<f32>,
-    // Per axis, the biased exponent of the grid's cell size: byte a for axis a.
-    exponents: u32,
-    // Per axis: bytes 0, 1 the left child's low and high cell, bytes 2, 3 the right's.
     quantized: vec3<u32>,
-    left: u32,
-    right: u32,
+    children: u32,
 }
 
-// A child reference with this bit is a leaf: primitives first .. first + count,
-// first in bits 0-27, count - 1 in bits 28-30.
+// A node's grid: the origin and, in byte a of `exponents`, the biased exponent
+// of the cell size on axis a.
+struct GpuGrid {
+    origin: vec3<f32>,
+    exponents: u32,
+}
+
+// Set in a reference to a leaf record; in `children`, the first child is a leaf.
 const LEAF: u32 = 0x80000000u;
-// No child, or the end of a traversal.
+const RIGHT_LEAF: u32 = 0x40000000u;
+// The end of a traversal.
 const NO_NODE: u32 = 0xffffffffu;
 
 struct Ray {

@@ -4,7 +4,7 @@
 use std::mem::{offset_of, size_of};
 
 use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
-use glint_scene::gpu_bvh::GpuNode;
+use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals};
 
 fn trace_module() -> naga::Module {
@@ -82,7 +82,7 @@ fn host_structs_match_wgsl() {
         Globals {
             camera, background, width, ambient, height, depth_cue_color, light_count, depth_cue,
             max_depth, cutoff, flags, view, tile_origin, sample_index, seed, sample_count, pixel_filter,
-            row_end, _pad0
+            row_end, bvh_root
         }
     );
     layout!(m, GpuLight { position, kind, radiance, attenuation, coefficients });
@@ -93,5 +93,6 @@ fn host_structs_match_wgsl() {
         }
     );
     layout!(m, GpuPrim { a, b, c, kind_material, object, first, count });
-    layout!(m, GpuNode { origin, exponents, quantized, left, right });
+    layout!(m, GpuNode { quantized, children });
+    layout!(m, GpuGrid { origin, exponents });
 }

@@ -68,13 +68,14 @@ impl SceneBuffers {
 
     /// Replaces the per-frame settings (camera, background, ambient, flags,
     /// depth cue, maximum depth) for the dispatches that follow. The image size
-    /// stays the one the buffers were made for and the light count the one
-    /// `write_lights` set.
+    /// stays the one the buffers were made for, the light count the one
+    /// `write_lights` set and the BVH root the uploaded scene's.
     pub fn set_globals(&mut self, globals: Globals) {
         self.globals = Globals {
             width: self.width,
             height: self.height,
             light_count: self.globals.light_count,
+            bvh_root: self.globals.bvh_root,
             ..globals
         };
     }

@@ -176,12 +176,13 @@ impl Renderer {
         let (width, height) = (globals.width, globals.height);
         let limits = self.device.limits();
         let accum_bytes = u64::from(width) * u64::from(height) * 16;
-        let arrays: [(&str, &[u8]); 6] = [
+        let arrays: [(&str, &[u8]); 7] = [
             ("primitives", bytemuck::cast_slice(&scene.prims)),
             ("BVH nodes", bytemuck::cast_slice(&scene.nodes)),
             ("materials", bytemuck::cast_slice(&scene.materials)),
             ("lights", bytemuck::cast_slice(&scene.lights)),
             ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
+            ("BVH grids", bytemuck::cast_slice(&scene.grids)),
             ("the accumulation image", &[]),
         ];
         for (what, bytes) in arrays {
@@ -208,6 +209,8 @@ impl Renderer {
         let materials = storage("materials", arrays[2].1);
         let lights = storage("lights", arrays[3].1);
         let points = storage("points", arrays[4].1);
+        let grids = storage("grids", arrays[5].1);
+        let globals = Globals { bvh_root: scene.bvh_root, ..globals };
         let globals_buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("globals"),
             contents: bytemuck::bytes_of(&globals),
@@ -225,7 +228,7 @@ impl Renderer {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let buffers = [&globals_buffer, &prims, &nodes, &materials, &lights, &points, &accum, &stats];
+        let buffers = [&globals_buffer, &prims, &nodes, &materials, &lights, &points, &accum, &stats, &grids];
         let entries: Vec<wgpu::BindGroupEntry> = buffers
             .iter()
             .enumerate()
@@ -236,7 +239,7 @@ impl Renderer {
             layout: &self.scene_layout,
             entries: &entries,
         });
-        let scene_bytes = arrays[..5].iter().map(|(_, b)| b.len() as u64).sum();
+        let scene_bytes = arrays[..6].iter().map(|(_, b)| b.len() as u64).sum();
         Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, trace_bind, materials, lights, scene_bytes })
     }
 
@@ -457,7 +460,8 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
 }
 
 /// The resources of the trace and primary kernels (shaders/bindings.wgsl): the
-/// globals, five read-only scene arrays, the accumulation image and the ray counts.
+/// globals, five read-only scene arrays, the accumulation image, the ray counts
+/// and the BVH grids.
 fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
         binding,
@@ -476,6 +480,7 @@ fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         buffer(5, read_only),
         buffer(6, read_write),
         buffer(7, read_write),
+        buffer(8, read_only),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
 }

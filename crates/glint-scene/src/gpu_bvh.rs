@@ -1,208 +1,173 @@
-//! The BVH as the trace kernel reads it: one [`GpuNode`] per interior node of
-//! the binary tree, holding both children's boxes, quantised to 8 bits per
-//! coordinate on a grid over the node's own box, and references to them; a leaf
-//! is a reference that names its primitives, so it costs no record and no load.
+//! The BVH as the trace kernel reads it. Record `i` stands for node `i` of the
+//! binary tree (children adjacent, as the builder lays them out):
 //!
-//! Why quantise: on a software rasteriser (lavapipe) every load whose address
-//! differs between SIMD lanes is done lane by lane, component by component, so
-//! a node visit costs what it loads. Two f32 child boxes and two child indices
-//! are 14 components; this layout needs 9 (grid origin and cell sizes 4, boxes 3,
-//! children 2). Boxes are rounded outwards, so a ray that enters a child's true
-//! box always enters its quantised one and traversal finds exactly the hits it
-//! found before.
+//! - an interior record holds both children's boxes, quantised to 8 bits per
+//!   coordinate on a grid over the node's own box, and the index of its first
+//!   child with a flag per child that says whether it is a leaf;
+//! - a leaf record holds its range of the packed primitives.
+//!
+//! A node's grid is not stored with it: its origin is the low corner of the node's
+//! box as its parent's record decodes it, its cells the smallest power of two
+//! that spans the box in 254 steps (one to spare for rounding outwards). The
+//! kernel derives the grid of the child it descends into from the box it has
+//! just tested; only a node it returns to from the stack (and the root) needs
+//! its grid loaded, from [`GpuBvh::grids`].
+//!
+//! Why: on a software rasteriser (lavapipe) every load whose address differs
+//! between SIMD lanes is done lane by lane and component by component, so a
+//! node visit costs what it loads. Two f32 child boxes and two child indices
+//! are 14 components; a record is 4. Boxes are rounded outwards, so a ray that
+//! enters a child's true box always enters its quantised one and traversal finds
+//! exactly the hits it found before.
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 use crate::bvh::{Bvh, Node};
 
-/// A child reference with this bit set is a leaf: primitives
-/// `first .. first + count` with `first` in bits 0–27 and `count − 1` in bits 28–30.
+/// Set in a reference to a leaf record (on the kernel's stack and in
+/// [`GpuBvh::root`]); in an interior record's `children`, this bit marks the
+/// first child as a leaf and [`RIGHT_LEAF`] the second.
 pub const LEAF: u32 = 1 << 31;
-/// The reference of a missing child (an empty scene's root has none).
-pub const NO_CHILD: u32 = u32::MAX;
-/// The most primitives one leaf reference can name.
-pub const MAX_LEAF_REF: usize = 8;
-const FIRST_BITS: u32 = 28;
+pub const RIGHT_LEAF: u32 = 1 << 30;
+const INDEX: u32 = RIGHT_LEAF - 1;
+/// The end of a traversal (no node).
+pub const NO_NODE: u32 = u32::MAX;
+/// The finest cell: 2^-100 (biased exponent 27), far above the subnormals a GPU
+/// may flush to zero, so host and kernel derive the same grids.
+const MIN_EXPONENT: u32 = 27;
 
-/// One interior node, 48 bytes, mirrored by `GpuNode` in shaders/types.wgsl.
-///
-/// Child `c`'s box on axis `a` is `origin[a] + q·cell[a]` for `q` from byte
-/// `2c` (low corner) to byte `2c + 1` (high corner) of `quantized[a]`, where
-/// `cell[a] = 2^(e − 127)` and `e` is byte `a` of `exponents`.
+/// One record, 16 bytes, mirrored by `GpuNode` in shaders/types.wgsl.
+/// Interior: byte `2c` (low corner) and `2c + 1` (high corner) of `quantized[a]`
+/// are child `c`'s box on axis `a` in grid cells; `children` is the first
+/// child's index, with [`LEAF`] and [`RIGHT_LEAF`]. Leaf: `quantized[0]` is the
+/// first primitive and `quantized[1]` the count.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuNode {
+    pub quantized: [u32; 3],
+    pub children: u32,
+}
+
+/// A node's grid, 16 bytes, mirrored by `GpuGrid` in shaders/types.wgsl: the
+/// origin and, in byte `a` of `exponents`, the biased exponent of the cell size
+/// on axis `a`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GpuGrid {
     pub origin: [f32; 3],
     pub exponents: u32,
-    pub quantized: [u32; 3],
-    pub left: u32,
-    pub right: u32,
-    pub _pad: [u32; 3],
 }
 
-impl GpuNode {
-    /// Child `c`'s box as the kernel decodes it.
-    pub fn child_box(&self, c: usize) -> (Vec3, Vec3) {
-        let corner = |byte: usize| {
-            Vec3::from_array(std::array::from_fn(|a| {
-                let q = (self.quantized[a] >> (8 * byte)) & 0xff;
-                decode(self.origin[a], q, cell(self.exponents >> (8 * a)))
-            }))
-        };
-        (corner(2 * c), corner(2 * c + 1))
+/// The tree in the kernel's layout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GpuBvh {
+    pub nodes: Vec<GpuNode>,
+    /// The grid of every interior record (unused for leaves).
+    pub grids: Vec<GpuGrid>,
+    /// Where traversal starts: record 0, flagged [`LEAF`] when the whole tree is one leaf.
+    pub root: u32,
+}
+
+impl GpuGrid {
+    /// The grid over box [lo, hi] (as decoded by the parent).
+    fn over(lo: Vec3, hi: Vec3) -> Self {
+        let e = (hi - lo).to_array().map(cell_exponent);
+        Self { origin: lo.into(), exponents: e[0] | e[1] << 8 | e[2] << 16 }
     }
 
-    pub fn children(&self) -> [u32; 2] {
-        [self.left, self.right]
+    fn cell(&self, axis: usize) -> f32 {
+        f32::from_bits(((self.exponents >> (8 * axis)) & 0xff) << 23)
     }
-}
 
-/// The primitives a leaf reference names, as a range of the packed primitives.
-pub fn leaf_range(reference: u32) -> std::ops::Range<u32> {
-    let first = reference & ((1 << FIRST_BITS) - 1);
-    let count = ((reference >> FIRST_BITS) & 0x7) + 1;
-    first..first + count
-}
-
-fn leaf_ref(first: u32, count: u32) -> u32 {
-    debug_assert!((1..=MAX_LEAF_REF as u32).contains(&count));
-    assert!(first < 1 << FIRST_BITS, "too many primitives for a leaf reference: {first}");
-    LEAF | (count - 1) << FIRST_BITS | first
-}
-
-/// The cell size of a biased exponent byte.
-fn cell(exponent_byte: u32) -> f32 {
-    f32::from_bits((exponent_byte & 0xff) << 23)
-}
-
-/// A grid coordinate back in world space, as the kernel computes it: `q·cell` is
-/// exact (a byte times a power of two), so only the sum rounds, once, with or
-/// without a fused multiply-add.
-fn decode(origin: f32, q: u32, cell: f32) -> f32 {
-    origin + q as f32 * cell
-}
-
-/// The biased exponent of the smallest power-of-two cell that spans `extent` in
-/// 254 cells (one to spare for rounding outwards), within the normal floats.
-fn exponent_for(extent: f32) -> u32 {
-    if !(extent > 0.0) {
-        return if extent == 0.0 { 1 } else { 254 };
+    /// Grid coordinate `q` on `axis` in world space, as the kernel computes it:
+    /// `q·cell` is exact (a byte times a power of two), so only the sum rounds,
+    /// once, with or without a fused multiply-add.
+    fn decode(&self, axis: usize, q: u32) -> f32 {
+        self.origin[axis] + q as f32 * self.cell(axis)
     }
-    let guess = ((extent / 254.0).log2().ceil() + 127.0).clamp(1.0, 254.0) as u32;
-    let spans = |e: u32| extent <= 254.0 * cell(e);
-    let mut e = guess;
-    while e < 254 && !spans(e) {
-        e += 1;
-    }
-    while e > 1 && spans(e - 1) {
-        e -= 1;
-    }
-    e
-}
 
-/// The largest grid coordinate whose decoded value is at most `lo`, and the
-/// smallest whose decoded value is at least `hi`, clamped to a byte; `None`
-/// when the grid cannot enclose [lo, hi].
-fn quantize_axis(origin: f32, cell: f32, lo: f32, hi: f32) -> Option<(u32, u32)> {
-    let mut q_lo = ((lo - origin) / cell).floor().clamp(0.0, 255.0) as u32;
-    while q_lo > 0 && decode(origin, q_lo, cell) > lo {
-        q_lo -= 1;
+    /// The box of bytes `byte` (low corner) and `byte + 1` (high) of `quantized`.
+    pub fn decode_box(&self, quantized: [u32; 3], byte: u32) -> (Vec3, Vec3) {
+        let corner = |b: u32| Vec3::from_array(std::array::from_fn(|a| self.decode(a, (quantized[a] >> (8 * b)) & 0xff)));
+        (corner(byte), corner(byte + 1))
     }
-    let mut q_hi = ((hi - origin) / cell).ceil().clamp(0.0, 255.0) as u32;
-    while q_hi < 255 && decode(origin, q_hi, cell) < hi {
-        q_hi += 1;
-    }
-    (decode(origin, q_lo, cell) <= lo && decode(origin, q_hi, cell) >= hi).then_some((q_lo, q_hi))
-}
 
-/// A node over two children given by their references and boxes (`None`: no child).
-fn node(children: [(u32, Option<(Vec3, Vec3)>); 2]) -> GpuNode {
-    let (lo, hi) = children
-        .iter()
-        .filter_map(|(_, b)| *b)
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
-    let mut n = GpuNode { left: children[0].0, right: children[1].0, ..Zeroable::zeroed() };
-    for a in 0..3 {
-        let origin = if lo[a].is_finite() { lo[a] } else { 0.0 };
-        // Far from the origin a fine grid's steps vanish in the coordinates'
-        // rounding: coarser cells until every child is enclosed (non-finite
-        // boxes never are, and keep the coarsest).
-        let mut e = exponent_for(hi[a] - origin);
-        let quantized = loop {
-            let q = children.map(|(_, b)| b.map(|(clo, chi)| quantize_axis(origin, cell(e), clo[a], chi[a])));
-            if e == 254 || q.iter().all(|c| !matches!(c, Some(None))) {
-                break q;
-            }
-            e += 1;
-        };
-        n.origin[a] = origin;
-        n.exponents |= e << (8 * a);
-        for (c, q) in quantized.into_iter().enumerate() {
-            let (q_lo, q_hi) = q.flatten().unwrap_or((0, 255));
-            n.quantized[a] |= (q_lo | q_hi << 8) << (16 * c);
+    /// The grid cells of [lo, hi] on `axis`: the largest coordinate that decodes
+    /// to at most `lo` and the smallest that decodes to at least `hi`. Any box
+    /// inside the grid's own box fits: 0 decodes to the origin and 255 past its end.
+    fn quantize(&self, axis: usize, lo: f32, hi: f32) -> (u32, u32) {
+        let cell = self.cell(axis);
+        let origin = self.origin[axis];
+        let mut q_lo = ((lo - origin) / cell).floor().clamp(0.0, 255.0) as u32;
+        while q_lo > 0 && self.decode(axis, q_lo) > lo {
+            q_lo -= 1;
         }
+        let mut q_hi = ((hi - origin) / cell).ceil().clamp(0.0, 255.0) as u32;
+        while q_hi < 255 && self.decode(axis, q_hi) < hi {
+            q_hi += 1;
+        }
+        (q_lo, q_hi)
     }
-    n
 }
 
-fn bounds(node: &Node) -> Option<(Vec3, Vec3)> {
-    let (lo, hi) = (Vec3::from(node.min), Vec3::from(node.max));
-    // An inverted box (the empty scene's) holds nothing.
-    lo.cmple(hi).all().then_some((lo, hi))
+/// The biased exponent of the smallest power of two `c` with 254·c ≥ `extent`,
+/// from the bits alone, as `cell_exponents` in bvh.wgsl: for extent m·2^E
+/// (1 ≤ m < 2) that is 2^(E−7) when m ≤ 254/128, else 2^(E−6).
+fn cell_exponent(extent: f32) -> u32 {
+    let bits = extent.to_bits() & 0x7fff_ffff;
+    let e = (bits >> 23) + u32::from(bits & 0x7f_ffff > 0x7e_0000);
+    e.clamp(MIN_EXPONENT + 7, 254 + 7) - 7
 }
 
 impl Bvh {
-    /// The tree in the kernel's layout: `[0]` is the root. A leaf of more than
-    /// [`MAX_LEAF_REF`] primitives (the brute-force tree's single leaf) becomes a
-    /// balanced subtree of such leaves whose boxes are all the leaf's box, so a
-    /// ray that enters it still tests every primitive.
-    pub fn gpu_nodes(&self) -> Vec<GpuNode> {
-        let mut out = vec![GpuNode::zeroed()];
-        let root = &self.nodes[0];
-        let record = match bounds(root) {
-            _ if !root.is_leaf() => self.interior(root, &mut out),
-            Some(b) => node([(self.leaf(root.left_or_first, root.count, root, &mut out), Some(b)), (NO_CHILD, None)]),
-            None => node([(NO_CHILD, None), (NO_CHILD, None)]),
+    /// The tree in the kernel's layout (see the module documentation).
+    pub fn gpu(&self) -> GpuBvh {
+        let mut out = GpuBvh {
+            nodes: vec![GpuNode::zeroed(); self.nodes.len()],
+            grids: vec![GpuGrid::zeroed(); self.nodes.len()],
+            root: 0,
         };
-        out[0] = record;
+        let root = &self.nodes[0];
+        if root.is_leaf() {
+            // An inverted box (the empty scene's) holds nothing: count 0 never
+            // reads the padding primitive.
+            let empty = !Vec3::from(root.min).cmple(Vec3::from(root.max)).all();
+            out.nodes[0] = leaf(root.left_or_first, if empty { 0 } else { root.count });
+            out.root = LEAF;
+        } else {
+            self.place(0, GpuGrid::over(root.min.into(), root.max.into()), &mut out);
+        }
         out
     }
 
-    /// The record of binary interior node `n`, its descendants appended to `out`.
-    fn interior(&self, n: &Node, out: &mut Vec<GpuNode>) -> GpuNode {
-        let left = n.left_or_first as usize;
-        let children = [left, left + 1].map(|i| {
-            let child = &self.nodes[i];
-            (self.reference(child, out), bounds(child))
-        });
-        node(children)
-    }
-
-    fn reference(&self, child: &Node, out: &mut Vec<GpuNode>) -> u32 {
-        if child.is_leaf() {
-            return self.leaf(child.left_or_first, child.count, child, out);
+    /// Writes interior node `i` over `grid` and, depth first, its subtree.
+    fn place(&self, i: usize, grid: GpuGrid, out: &mut GpuBvh) {
+        out.grids[i] = grid;
+        let first = self.nodes[i].left_or_first;
+        let mut record = GpuNode { quantized: [0; 3], children: first };
+        for (c, flag) in [LEAF, RIGHT_LEAF].into_iter().enumerate() {
+            let index = first as usize + c;
+            let child: &Node = &self.nodes[index];
+            for a in 0..3 {
+                let (q_lo, q_hi) = grid.quantize(a, child.min[a], child.max[a]);
+                record.quantized[a] |= (q_lo | q_hi << 8) << (16 * c);
+            }
+            if child.is_leaf() {
+                record.children |= flag;
+                out.nodes[index] = leaf(child.left_or_first, child.count);
+            } else {
+                let (lo, hi) = grid.decode_box(record.quantized, 2 * c as u32);
+                self.place(index, GpuGrid::over(lo, hi), out);
+            }
         }
-        let slot = out.len();
-        out.push(GpuNode::zeroed());
-        let record = self.interior(child, out);
-        out[slot] = record;
-        slot as u32
+        assert!(first <= INDEX, "too many BVH nodes for a child index: {first}");
+        out.nodes[i] = record;
     }
+}
 
-    /// A reference to primitives `first .. first + count` of leaf `leaf`.
-    fn leaf(&self, first: u32, count: u32, leaf: &Node, out: &mut Vec<GpuNode>) -> u32 {
-        if count as usize <= MAX_LEAF_REF {
-            return leaf_ref(first, count);
-        }
-        let half = count / 2;
-        let slot = out.len();
-        out.push(GpuNode::zeroed());
-        let left = self.leaf(first, half, leaf, out);
-        let right = self.leaf(first + half, count - half, leaf, out);
-        out[slot] = node([(left, bounds(leaf)), (right, bounds(leaf))]);
-        slot as u32
-    }
+fn leaf(first: u32, count: u32) -> GpuNode {
+    GpuNode { quantized: [first, count, 0], children: 0 }
 }
 
 #[cfg(test)]
@@ -223,34 +188,49 @@ mod tests {
         outer.0.cmple(inner.0).all() && outer.1.cmpge(inner.1).all()
     }
 
-    /// Walks the GPU tree: every primitive is named by exactly one leaf
-    /// reference, and every decoded child box contains its primitives.
+    /// What the kernel sees of interior record `i` over `grid`: both children's
+    /// references (flagged as on the stack) and decoded boxes.
+    fn children(gpu: &GpuBvh, i: u32, grid: &GpuGrid) -> [(u32, (Vec3, Vec3)); 2] {
+        let n = gpu.nodes[i as usize];
+        let first = n.children & INDEX;
+        [(first, n.children & LEAF != 0), (first + 1, n.children & RIGHT_LEAF != 0)]
+            .map(|(index, is_leaf)| if is_leaf { index | LEAF } else { index })
+            .into_iter()
+            .zip([0, 2].map(|byte| grid.decode_box(n.quantized, byte)))
+            .collect::<Vec<_>>()
+            .try_into()
+            .unwrap()
+    }
+
+    fn leaf_range(gpu: &GpuBvh, reference: u32) -> std::ops::Range<u32> {
+        let n = gpu.nodes[(reference & !LEAF) as usize];
+        n.quantized[0]..n.quantized[0] + n.quantized[1]
+    }
+
+    /// Walks the tree as the kernel does, deriving each child's grid from its
+    /// decoded box: that grid is the one stored for it, every primitive is in
+    /// exactly one leaf, and every decoded box contains its primitives.
     fn check(bvh: &Bvh, bounds: &[(Vec3, Vec3)]) {
-        let nodes = bvh.gpu_nodes();
+        let gpu = bvh.gpu();
         let mut seen = vec![0u32; bounds.len()];
-        let mut reached = vec![false; nodes.len()];
-        let mut stack = vec![0u32];
-        while let Some(i) = stack.pop() {
-            assert!(!std::mem::replace(&mut reached[i as usize], true), "node {i} reached twice");
-            let n = &nodes[i as usize];
-            for (c, child) in n.children().into_iter().enumerate() {
-                if child == NO_CHILD {
-                    continue;
-                }
-                let decoded = n.child_box(c);
-                if child & LEAF == 0 {
-                    stack.push(child);
-                    continue;
-                }
-                for p in leaf_range(child) {
+        let mut stack = vec![(gpu.root, gpu.grids[0], None)];
+        while let Some((reference, grid, decoded)) = stack.pop() {
+            if reference & LEAF != 0 {
+                for p in leaf_range(&gpu, reference) {
                     let prim = bvh.order[p as usize] as usize;
                     seen[prim] += 1;
-                    assert!(contains(decoded, bounds[prim]), "node {i} child {c} {decoded:?} misses {:?}", bounds[prim]);
+                    if let Some(decoded) = decoded {
+                        assert!(contains(decoded, bounds[prim]), "{decoded:?} misses {:?}", bounds[prim]);
+                    }
                 }
+                continue;
+            }
+            assert_eq!(grid, gpu.grids[reference as usize], "derived and stored grids differ");
+            for (child, (lo, hi)) in children(&gpu, reference, &grid) {
+                stack.push((child, GpuGrid::over(lo, hi), Some((lo, hi))));
             }
         }
-        assert!(seen.iter().all(|&s| s == 1), "a primitive is named by no leaf or by several");
-        assert!(reached.iter().all(|&r| r), "unreachable nodes");
+        assert!(seen.iter().all(|&s| s == 1), "a primitive is in no leaf or in several");
     }
 
     #[test]
@@ -261,8 +241,7 @@ mod tests {
             let bounds = sphere_bounds(&spheres);
             check(&Bvh::build(&bounds), &bounds);
         }
-        // Far from the origin, where the grid's cells are coarse against the
-        // coordinates' own precision.
+        // Far from the origin, where fine cells vanish in the coordinates' rounding.
         let offset = Vec3::splat(3.0e5);
         let spheres: Vec<_> = random_spheres(&mut rng, 500, 1.0).into_iter().map(|(c, r)| (c + offset, r)).collect();
         let bounds = sphere_bounds(&spheres);
@@ -280,41 +259,59 @@ mod tests {
 
     #[test]
     fn quantisation_is_tight() {
-        // A cell is at most 1/127 of the parent's extent; boxes grow by under two
-        // cells per side.
+        // A cell is at most 1/127 of the parent's decoded extent and boxes grow by
+        // under two cells per side; the decoded extent itself grows level by
+        // level, so compare with the parent's decoded box.
         let mut rng = Rng(2);
         let bounds = sphere_bounds(&random_spheres(&mut rng, 1000, 10.0));
         let bvh = Bvh::build(&bounds);
-        let nodes = bvh.gpu_nodes();
-        let mut stack = vec![(0u32, bvh.nodes[0])];
-        while let Some((g, n)) = stack.pop() {
-            let parent = (Vec3::from(n.min), Vec3::from(n.max));
-            let slack = (parent.1 - parent.0) * (2.0 / 127.0);
-            let left = n.left_or_first as usize;
-            for (c, child) in [bvh.nodes[left], bvh.nodes[left + 1]].into_iter().enumerate() {
-                let (lo, hi) = nodes[g as usize].child_box(c);
-                assert!((Vec3::from(child.min) - lo).cmple(slack).all() && (hi - Vec3::from(child.max)).cmple(slack).all());
-                let reference = nodes[g as usize].children()[c];
-                if reference & LEAF == 0 {
-                    stack.push((reference, child));
+        let gpu = bvh.gpu();
+        let mut stack = vec![(0u32, gpu.grids[0])];
+        while let Some((i, grid)) = stack.pop() {
+            let first = bvh.nodes[i as usize].left_or_first as usize;
+            let (origin, extent) = (Vec3::from(grid.origin), Vec3::from_array(std::array::from_fn(|a| 254.0 * grid.cell(a))));
+            for (c, (child, (lo, hi))) in children(&gpu, i, &grid).into_iter().enumerate() {
+                let exact = &bvh.nodes[first + c];
+                let slack = extent * (2.0 / 254.0) + origin.abs() * 1e-6;
+                assert!((Vec3::from(exact.min) - lo).cmple(slack).all() && (hi - Vec3::from(exact.max)).cmple(slack).all());
+                if child & LEAF == 0 {
+                    stack.push((child, GpuGrid::over(lo, hi)));
                 }
             }
         }
     }
 
     #[test]
-    fn a_big_leaf_becomes_a_subtree_of_small_ones() {
-        let bounds: Vec<(Vec3, Vec3)> = (0..1000).map(|i| (Vec3::splat(i as f32), Vec3::splat(i as f32 + 1.0))).collect();
-        let bvh = Bvh::single_leaf(&bounds);
-        check(&bvh, &bounds);
-        assert!(bvh.gpu_nodes().len() > 1000 / MAX_LEAF_REF);
+    fn cell_exponents_are_the_smallest_that_span_254_cells() {
+        let mut rng = Rng(3);
+        for _ in 0..10_000 {
+            let extent = 10f32.powf(rng.range(-20.0, 20.0));
+            let e = cell_exponent(extent);
+            let cell = |e: u32| f32::from_bits(e << 23);
+            assert!(254.0 * cell(e) >= extent, "{extent}: 2^{} too small", e as i32 - 127);
+            assert!(254.0 * cell(e - 1) < extent, "{extent}: 2^{} not the smallest", e as i32 - 127);
+        }
+        assert_eq!(cell_exponent(0.0), MIN_EXPONENT);
+        assert_eq!(cell_exponent(f32::MIN_POSITIVE / 4.0), MIN_EXPONENT);
     }
 
     #[test]
-    fn an_empty_scene_has_no_children() {
-        let nodes = Bvh::build(&[]).gpu_nodes();
-        assert_eq!(nodes.len(), 1);
-        assert_eq!(nodes[0].children(), [NO_CHILD, NO_CHILD]);
+    fn a_lone_leaf_is_the_root() {
+        let bounds = vec![(Vec3::ZERO, Vec3::ONE); 3];
+        let gpu = Bvh::build(&bounds).gpu();
+        assert_eq!(gpu.root, LEAF);
+        assert_eq!(leaf_range(&gpu, gpu.root), 0..3);
+        // The brute-force tree: one leaf however many primitives.
+        let many = vec![(Vec3::ZERO, Vec3::ONE); 1000];
+        let gpu = Bvh::single_leaf(&many).gpu();
+        assert_eq!(leaf_range(&gpu, gpu.root), 0..1000);
+    }
+
+    #[test]
+    fn an_empty_scene_has_an_empty_leaf() {
+        let gpu = Bvh::build(&[]).gpu();
+        assert_eq!(gpu.root, LEAF);
+        assert_eq!(leaf_range(&gpu, gpu.root), 0..0);
     }
 
     #[test]
@@ -323,8 +320,10 @@ mod tests {
             (Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY)),
             (Vec3::splat(f32::NAN), Vec3::splat(f32::NAN)),
             (Vec3::ZERO, Vec3::ONE),
+            (Vec3::ZERO, Vec3::ONE),
+            (Vec3::ZERO, Vec3::ONE),
         ];
-        Bvh::build(&bounds).gpu_nodes();
+        Bvh::build(&bounds).gpu();
     }
 
     /// Nearest positive root of |o + t·d − c|² = r² for unit `d`.
@@ -349,43 +348,45 @@ mod tests {
     }
 
     /// Closest hit as `traverse` in bvh.wgsl finds it, with the same fixed
-    /// stack: down through interior nodes nearest child first, the far one
-    /// pushed with its entry distance, then a leaf's primitives; pops skip
-    /// entries behind the current hit; equal distances go to the lower
+    /// stack: down through interior records nearest child first, the far one
+    /// pushed with its entry distance, the near one's grid derived from its box;
+    /// then a leaf's primitives; pops skip entries behind the current hit and
+    /// load the grid of the node they return to; equal distances go to the lower
     /// primitive. Returns (t, input primitive index) and the most stack entries used.
     fn closest_hit(bvh: &Bvh, spheres: &[(Vec3, f32)], origin: Vec3, dir: Vec3) -> (Option<(f32, u32)>, usize) {
-        let nodes = bvh.gpu_nodes();
+        let gpu = bvh.gpu();
         let inv_dir = dir.recip();
         let mut best: Option<(f32, u32)> = None;
         let t_max = |best: &Option<(f32, u32)>| best.map_or(f32::INFINITY, |b| b.0);
         let mut stack = [(0u32, 0f32); MAX_DEPTH];
         let (mut top, mut most) = (0, 0);
-        let mut index = 0u32;
+        let mut index = gpu.root;
+        let mut grid = gpu.grids[0];
         loop {
-            while index != NO_CHILD && index & LEAF == 0 {
-                let n = &nodes[index as usize];
-                let entry = |c: usize| {
-                    let child = n.children()[c];
-                    (child != NO_CHILD).then(|| box_entry(n.child_box(c), origin, inv_dir, t_max(&best))).flatten()
-                };
-                let (t_left, t_right) = (entry(0), entry(1));
+            while index & LEAF == 0 {
+                let [(left, left_box), (right, right_box)] = children(&gpu, index, &grid);
+                let (t_left, t_right) = (
+                    box_entry(left_box, origin, inv_dir, t_max(&best)),
+                    box_entry(right_box, origin, inv_dir, t_max(&best)),
+                );
                 let near_first = t_left.unwrap_or(f32::INFINITY) <= t_right.unwrap_or(f32::INFINITY);
-                let (near, far) = if near_first { (n.left, n.right) } else { (n.right, n.left) };
-                if t_left.is_some() || t_right.is_some() {
-                    if let (Some(a), Some(b)) = (t_left, t_right) {
-                        stack[top] = (far, a.max(b));
-                        top += 1;
-                        most = most.max(top);
-                    }
-                    index = near;
-                } else {
-                    index = pop(&stack, &mut top, t_max(&best));
+                let ((near, near_box), far) = if near_first { ((left, left_box), right) } else { ((right, right_box), left) };
+                if t_left.is_none() && t_right.is_none() {
+                    index = pop(&gpu, &stack, &mut top, &mut grid, t_max(&best));
+                    continue;
                 }
+                if let (Some(a), Some(b)) = (t_left, t_right) {
+                    stack[top] = (far, a.max(b));
+                    top += 1;
+                    most = most.max(top);
+                }
+                index = near;
+                grid = GpuGrid::over(near_box.0, near_box.1);
             }
-            if index == NO_CHILD {
+            if index == NO_NODE {
                 return (best, most);
             }
-            for p in leaf_range(index) {
+            for p in leaf_range(&gpu, index) {
                 let p = bvh.order[p as usize];
                 let (center, radius) = spheres[p as usize];
                 let Some(t) = hit_sphere(origin, dir, center, radius) else { continue };
@@ -393,18 +394,22 @@ mod tests {
                     best = Some((t, p));
                 }
             }
-            index = pop(&stack, &mut top, t_max(&best));
+            index = pop(&gpu, &stack, &mut top, &mut grid, t_max(&best));
         }
     }
 
-    fn pop(stack: &[(u32, f32)], top: &mut usize, t_max: f32) -> u32 {
+    fn pop(gpu: &GpuBvh, stack: &[(u32, f32)], top: &mut usize, grid: &mut GpuGrid, t_max: f32) -> u32 {
         while *top > 0 {
             *top -= 1;
-            if stack[*top].1 <= t_max {
-                return stack[*top].0;
+            let (reference, t) = stack[*top];
+            if t <= t_max {
+                if reference & LEAF == 0 {
+                    *grid = gpu.grids[reference as usize];
+                }
+                return reference;
             }
         }
-        NO_CHILD
+        NO_NODE
     }
 
     fn brute_force(spheres: &[(Vec3, f32)], origin: Vec3, dir: Vec3) -> Option<(f32, u32)> {

@@ -5,7 +5,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 use crate::bvh::Bvh;
-use crate::gpu_bvh::GpuNode;
+use crate::gpu_bvh::{GpuGrid, GpuNode};
 use crate::shape::polygon_normal;
 use crate::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
@@ -118,7 +118,8 @@ pub struct Globals {
     pub pixel_filter: u32,
     /// The last row (exclusive) of the band a dispatch covers.
     pub row_end: u32,
-    pub _pad0: u32,
+    /// The BVH record traversal starts from (`GpuScene::bvh_root`).
+    pub bvh_root: u32,
 }
 
 #[repr(C)]
@@ -176,6 +177,9 @@ pub struct GpuPrim {
 pub struct GpuScene {
     pub prims: Vec<GpuPrim>,
     pub nodes: Vec<GpuNode>,
+    pub grids: Vec<GpuGrid>,
+    /// Where BVH traversal starts (`Globals::bvh_root`).
+    pub bvh_root: u32,
     pub materials: Vec<GpuMaterial>,
     pub lights: Vec<GpuLight>,
     /// Polygon vertices and triangle vertex normals, xyz + unused w.
@@ -187,6 +191,7 @@ impl GpuScene {
     pub fn byte_size(&self) -> usize {
         std::mem::size_of_val(self.prims.as_slice())
             + std::mem::size_of_val(self.nodes.as_slice())
+            + std::mem::size_of_val(self.grids.as_slice())
             + std::mem::size_of_val(self.materials.as_slice())
             + std::mem::size_of_val(self.lights.as_slice())
             + std::mem::size_of_val(self.points.as_slice())
@@ -260,7 +265,8 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> GpuScene {
     if lights.is_empty() {
         lights.push(Zeroable::zeroed());
     }
-    GpuScene { prims, nodes: bvh.gpu_nodes(), materials, lights, points, light_count }
+    let bvh = bvh.gpu();
+    GpuScene { prims, nodes: bvh.nodes, grids: bvh.grids, bvh_root: bvh.root, materials, lights, points, light_count }
 }
 
 pub fn pack_material(m: &crate::Material) -> GpuMaterial {
@@ -362,6 +368,6 @@ pub fn globals(scene: &Scene, width: u32, height: u32, light_count: u32) -> Glob
         sample_count: 1,
         pixel_filter: Filter::Box as u32,
         row_end: height,
-        _pad0: 0,
+        bvh_root: 0,
     }
 }
