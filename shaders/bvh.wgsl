@@ -68,9 +68,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     // Per axis, the corner byte of a quantised box the ray meets first (0 low,
     // 8 high) and last: choosing the planes by the direction's sign saves the
     // per-axis min and max of the textbook slab test.
-    let negative = inv_dir < vec3<f32>(0.0);
-    let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), negative);
-    let far_byte = select(vec3<u32>(8u), vec3<u32>(0u), negative);
+    let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), inv_dir < vec3<f32>(0.0));
     // Pending far children with their entry distances, so a pop needs no
     // second box test: it is skipped once a closer hit has been found.
     var stack_node: array<u32, BVH_STACK>;
@@ -79,13 +77,16 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     var index = globals.bvh_root;
     var grid = stored_grid(0u);
     while index != NO_NODE {
-        while (index & LEAF) == 0u {
+        // A loop runs its body once even with no lane active (masked SIMD on
+        // a CPU); the test before it skips that when every lane is at a leaf.
+        if (index & LEAF) == 0u {
+        loop {
             hit.nodes++;
             let node = nodes[index];
             let left_near = decode(grid, node.quantized, near_byte);
-            let left_far = decode(grid, node.quantized, far_byte);
+            let left_far = decode(grid, node.quantized, near_byte ^ vec3<u32>(8u));
             let right_near = decode(grid, node.quantized, near_byte + 16u);
-            let right_far = decode(grid, node.quantized, far_byte + 16u);
+            let right_far = decode(grid, node.quantized, near_byte ^ vec3<u32>(24u));
             let t_left = slab_entry((left_near - ray.origin) * inv_dir, (left_far - ray.origin) * inv_dir, t_max);
             let t_right = slab_entry((right_near - ray.origin) * inv_dir, (right_far - ray.origin) * inv_dir, t_max);
             let first = node.children & ~(LEAF | RIGHT_LEAF);
@@ -103,8 +104,13 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 index = select(right, left, near_first);
                 let near = select(right_near, left_near, near_first);
                 let far = select(right_far, left_far, near_first);
+                let negative = near_byte != vec3<u32>(0u);
                 grid = derived_grid(select(near, far, negative), select(far, near, negative));
             }
+            if (index & LEAF) != 0u {
+                break;
+            }
+        }
         }
         if index == NO_NODE {
             break;
@@ -151,6 +157,9 @@ fn pop(
     t_max: f32,
     grid: ptr<function, Grid>,
 ) -> u32 {
+    if *top == 0u {
+        return NO_NODE;
+    }
     while *top > 0u {
         *top -= 1u;
         if (*stack_t)[*top] <= t_max {
