@@ -1,9 +1,7 @@
 //! Scene formats and primitives on the GPU: concave polygons, open cones and
-//! cylinders, OBJ/MTL meshes, and the Standard Procedural Databases.
+//! cylinders, OBJ/MTL meshes.
 
 mod support;
-
-use std::path::PathBuf;
 
 use glam::DVec3;
 use glint_gpu::{Acceleration, RenderOptions};
@@ -207,35 +205,4 @@ rotate = [0, 0, 0]
     let top = scene.camera.project(60, 60, DVec3::new(-0.2, 1.0, 0.1)).unwrap();
     assert_close(image.linear_at(front.0 as u32, front.1 as u32), [0.8, 0.1, 0.1], 1e-4, "front face (red)");
     assert_close(image.linear_at(top.0 as u32, top.1 as u32), [0.1, 0.2, 0.9], 1e-4, "top face (blue)");
-}
-
-pub fn spd_dir() -> PathBuf {
-    let dir = std::env::var_os("GLINT_SPD_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/spd")));
-    assert!(dir.is_dir(), "the SPD scenes are missing: {} (set GLINT_SPD_DIR)", dir.display());
-    dir
-}
-
-/// Small SPD scenes render on the GPU, BVH and brute force giving identical
-/// images, depths and ray counts, and every primitive kind shows up.
-#[test]
-fn spd_scenes_render_identically_with_and_without_the_bvh() {
-    for name in ["balls_s1", "gears_s1", "mount_s1", "rings_s1", "teapot_s1", "teapot_s2", "tetra_s2", "tree_s2", "jacks_s1", "shells_s1", "lattice_s1", "sombrero_s1", "nurbtst_s1"] {
-        let path = spd_dir().join(format!("{name}.nff"));
-        let mut scene = glint_scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        (scene.width, scene.height) = (48, 48);
-        let (bvh, bvh_stats) = support::render_with(&scene, Acceleration::Bvh);
-        let (brute, brute_stats) = support::render_with(&scene, Acceleration::BruteForce);
-        let depth = |a| render_options(&scene, a, RenderOptions { view: View::Depth, ..Default::default() }).0.linear;
-        support::assert_images_equal(&depth(Acceleration::Bvh), &depth(Acceleration::BruteForce), 0, &format!("{name} depth"));
-        // Coincident surfaces (teapot_s1 has some) tie at equal t: the kernel gives
-        // them to the lower object id, so visiting order cannot change a pixel.
-        support::assert_images_equal(&bvh.linear, &brute.linear, 0, &format!("{name} colour"));
-        assert_eq!(bvh_stats, brute_stats, "{name}");
-        let distinct: std::collections::HashSet<[u32; 3]> =
-            bvh.linear.iter().map(|p| [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]).collect();
-        assert!(distinct.len() > 20, "{name}: only {} colours", distinct.len());
-        assert!(bvh_stats.eye_hit > 0, "{name}: nothing hit");
-    }
 }
