@@ -46,13 +46,15 @@ impl Renderer {
     /// of `width` × `height`.
     pub fn prepare(&self, scene: &Scene, width: u32, height: u32, acceleration: Acceleration) -> Result<Prepared, GpuError> {
         let bounds = gpu_types::primitive_bounds(scene);
+        // The build includes laying the tree out for the kernel.
         let start = Instant::now();
         let bvh = match acceleration {
             Acceleration::Bvh => Bvh::build(&bounds),
             Acceleration::BruteForce => Bvh::single_leaf(&bounds),
         };
+        let gpu_bvh = bvh.gpu();
         let bvh_build = start.elapsed();
-        let packed = gpu_types::pack(scene, &bvh);
+        let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
         let globals = gpu_types::globals(scene, width, height, packed.light_count);
         let buffers = self.upload(&packed, globals)?;
         let eye = scene.camera.eye;

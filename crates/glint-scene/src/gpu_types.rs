@@ -4,8 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-use crate::bvh::Bvh;
-use crate::gpu_bvh::{GpuGrid, GpuNode};
+use crate::gpu_bvh::{GpuBvh, GpuGrid, GpuNode};
 use crate::shape::polygon_normal;
 use crate::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
@@ -207,8 +206,9 @@ pub fn primitive_bounds(scene: &Scene) -> Vec<(Vec3, Vec3)> {
     scene.objects.iter().flat_map(|o| o.shapes.iter().map(Shape::bounds)).collect()
 }
 
-/// Packs the scene's primitives in the BVH's leaf order.
-pub fn pack(scene: &Scene, bvh: &Bvh) -> GpuScene {
+/// Packs the scene's primitives in `order` (the BVH's leaf order, `Bvh::order`)
+/// with the BVH in the kernel's layout.
+pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
     let flat: Vec<(u32, &Shape, usize)> = scene
         .objects
         .iter()
@@ -216,8 +216,7 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> GpuScene {
         .flat_map(|(id, o)| o.shapes.iter().map(move |s| (id as u32, s, o.material)))
         .collect();
     let mut points = Vec::new();
-    let mut prims: Vec<GpuPrim> = bvh
-        .order
+    let mut prims: Vec<GpuPrim> = order
         .iter()
         .map(|&i| {
             let (object, shape, material) = flat[i as usize];
@@ -265,7 +264,6 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> GpuScene {
     if lights.is_empty() {
         lights.push(Zeroable::zeroed());
     }
-    let bvh = bvh.gpu();
     GpuScene { prims, nodes: bvh.nodes, grids: bvh.grids, bvh_root: bvh.root, materials, lights, points, light_count }
 }
 

@@ -994,7 +994,7 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     }
     // The host half of rendering: none of it may panic on what a loader accepted.
     let bvh = Bvh::build(&primitive_bounds(scene));
-    let packed = pack(scene, &bvh);
+    let packed = pack(scene, &bvh.order, bvh.gpu());
     let g = globals(scene, scene.width, scene.height, packed.light_count);
     let camera_values = [g.camera.u, g.camera.v, g.camera.w].concat();
     prop_assert!(
