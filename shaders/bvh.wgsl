@@ -3,6 +3,13 @@
 
 const BVH_STACK: u32 = 32u;
 
+// Pending far children with their entry distances, so a pop needs no second
+// box test: it is skipped once a closer hit has been found. At module scope, so
+// they are zeroed once per invocation, not once per traversal (a kernel traces
+// several rays, e.g. shadow rays, per pixel).
+var<private> stack_node: array<u32, BVH_STACK>;
+var<private> stack_t: array<f32, BVH_STACK>;
+
 struct Hit {
     t: f32,
     prim: u32,
@@ -69,10 +76,6 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     // 8 high) and last: choosing the planes by the direction's sign saves the
     // per-axis min and max of the textbook slab test.
     let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), inv_dir < vec3<f32>(0.0));
-    // Pending far children with their entry distances, so a pop needs no
-    // second box test: it is skipped once a closer hit has been found.
-    var stack_node: array<u32, BVH_STACK>;
-    var stack_t: array<f32, BVH_STACK>;
     var top = 0u;
     var index = globals.bvh_root;
     var grid = stored_grid(0u);
@@ -93,7 +96,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
             let left = first | (node.children & LEAF);
             let right = (first + 1u) | ((node.children << 1u) & LEAF);
             if min(t_left, t_right) == MISS {
-                index = pop(&stack_node, &stack_t, &top, t_max, &grid);
+                index = pop(&top, t_max, &grid);
             } else {
                 let near_first = t_left <= t_right;
                 if max(t_left, t_right) != MISS {
@@ -143,27 +146,21 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 return hit;
             }
         }
-        index = pop(&stack_node, &stack_t, &top, t_max, &grid);
+        index = pop(&top, t_max, &grid);
     }
     return hit;
 }
 
 // The most recently pushed node still closer than `t_max`, or NO_NODE; the
 // grid of an interior node returned to.
-fn pop(
-    stack_node: ptr<function, array<u32, BVH_STACK>>,
-    stack_t: ptr<function, array<f32, BVH_STACK>>,
-    top: ptr<function, u32>,
-    t_max: f32,
-    grid: ptr<function, Grid>,
-) -> u32 {
+fn pop(top: ptr<function, u32>, t_max: f32, grid: ptr<function, Grid>) -> u32 {
     if *top == 0u {
         return NO_NODE;
     }
     while *top > 0u {
         *top -= 1u;
-        if (*stack_t)[*top] <= t_max {
-            let index = (*stack_node)[*top];
+        if stack_t[*top] <= t_max {
+            let index = stack_node[*top];
             if (index & LEAF) == 0u {
                 *grid = stored_grid(index);
             }
