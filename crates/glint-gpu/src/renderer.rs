@@ -510,7 +510,7 @@ pub(crate) fn create_pipelines<const N: usize>(
         // count the host wrote. Every index stays in its array: node and
         // primitive indices come from the same builder and packer. So wgpu's
         // injected loop counters and index clamps, which cost the software
-        // rasteriser ~7% of traversal time, are not needed. Kernels read from a
+        // rasteriser ~5% of traversal time, are not needed. Kernels read from a
         // directory (the viewer's hot reload, possibly mid-edit) keep them.
         ShaderSource::Embedded => unsafe {
             device.create_shader_module_trusted(descriptor, wgpu::ShaderRuntimeChecks::unchecked())
