@@ -1,5 +1,5 @@
-//! Bounding volume hierarchy over primitive bounds, built on the host and
-//! flattened for the GPU.
+//! Bounding volume hierarchy over primitive bounds, built on the host;
+//! [`crate::gpu_bvh`] lays it out for the kernel.
 //!
 //! Layout: `nodes[0]` is the root; an interior node's children are adjacent at
 //! `left_or_first` and `left_or_first + 1`; a leaf (`count > 0`) holds
@@ -33,7 +33,7 @@ const BINS: usize = 16;
 /// parallel; smaller ones build serially, where task overhead would dominate.
 const PARALLEL_MIN: usize = 4096;
 
-/// One node, 32 bytes, mirrored by `Node` in shaders/types.wgsl.
+/// One node of the binary tree, with its exact box.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct Node {
