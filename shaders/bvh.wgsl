@@ -78,42 +78,45 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), inv_dir < vec3<f32>(0.0));
     var top = 0u;
     var index = globals.bvh_root;
+    // The root's grid (unused when the root is a leaf).
     var grid = stored_grid(0u);
     while index != NO_NODE {
         // A loop runs its body once even with no lane active (masked SIMD on
-        // a CPU); the test before it skips that when every lane is at a leaf.
+        // a CPU); testing first skips that when every lane is at a leaf.
         if (index & LEAF) == 0u {
-        loop {
-            hit.nodes++;
-            let node = nodes[index];
-            let left_near = decode(grid, node.quantized, near_byte);
-            let left_far = decode(grid, node.quantized, near_byte ^ vec3<u32>(8u));
-            let right_near = decode(grid, node.quantized, near_byte + 16u);
-            let right_far = decode(grid, node.quantized, near_byte ^ vec3<u32>(24u));
-            let t_left = slab_entry((left_near - ray.origin) * inv_dir, (left_far - ray.origin) * inv_dir, t_max);
-            let t_right = slab_entry((right_near - ray.origin) * inv_dir, (right_far - ray.origin) * inv_dir, t_max);
-            let first = node.children & ~(LEAF | RIGHT_LEAF);
-            let left = first | (node.children & LEAF);
-            let right = (first + 1u) | ((node.children << 1u) & LEAF);
-            if min(t_left, t_right) == MISS {
-                index = pop(&top, t_max, &grid);
-            } else {
-                let near_first = t_left <= t_right;
-                if max(t_left, t_right) != MISS {
-                    stack_node[top] = select(left, right, near_first);
-                    stack_t[top] = max(t_left, t_right);
-                    top++;
+            loop {
+                hit.nodes++;
+                let node = nodes[index];
+                let far_byte = near_byte ^ vec3<u32>(8u);
+                let left_near = decode(grid, node.quantized, near_byte);
+                let left_far = decode(grid, node.quantized, far_byte);
+                let right_near = decode(grid, node.quantized, near_byte + 16u);
+                let right_far = decode(grid, node.quantized, far_byte + 16u);
+                let t_left = slab_entry((left_near - ray.origin) * inv_dir, (left_far - ray.origin) * inv_dir, t_max);
+                let t_right = slab_entry((right_near - ray.origin) * inv_dir, (right_far - ray.origin) * inv_dir, t_max);
+                let first = node.children & ~(LEAF | RIGHT_LEAF);
+                let left = first | (node.children & LEAF);
+                let right = (first + 1u) | ((node.children << 1u) & LEAF);
+                if min(t_left, t_right) == MISS {
+                    index = pop(&top, t_max, &grid);
+                } else {
+                    let near_first = t_left <= t_right;
+                    if max(t_left, t_right) != MISS {
+                        stack_node[top] = select(left, right, near_first);
+                        stack_t[top] = max(t_left, t_right);
+                        top++;
+                    }
+                    index = select(right, left, near_first);
+                    // Descending: the child's grid is the one over the box just tested.
+                    let near = select(right_near, left_near, near_first);
+                    let far = select(right_far, left_far, near_first);
+                    let negative = near_byte != vec3<u32>(0u);
+                    grid = derived_grid(select(near, far, negative), select(far, near, negative));
                 }
-                index = select(right, left, near_first);
-                let near = select(right_near, left_near, near_first);
-                let far = select(right_far, left_far, near_first);
-                let negative = near_byte != vec3<u32>(0u);
-                grid = derived_grid(select(near, far, negative), select(far, near, negative));
+                if (index & LEAF) != 0u {
+                    break;
+                }
             }
-            if (index & LEAF) != 0u {
-                break;
-            }
-        }
         }
         if index == NO_NODE {
             break;
@@ -154,6 +157,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
 // The most recently pushed node still closer than `t_max`, or NO_NODE; the
 // grid of an interior node returned to.
 fn pop(top: ptr<function, u32>, t_max: f32, grid: ptr<function, Grid>) -> u32 {
+    // Skips the loop's masked body when every lane's stack is empty.
     if *top == 0u {
         return NO_NODE;
     }

@@ -342,7 +342,7 @@ impl Renderer {
             row_end: rows.end,
             sample_index,
             seed: options.seed,
-            sample_count: if options.view.is_primary_only() { 1 } else { options.spp },
+            sample_count: options.spp,
             pixel_filter: options.filter as u32,
             view: options.view as u32,
             ..scene.globals
