@@ -31,8 +31,6 @@ use crate::bvh::{Bvh, Node};
 pub const LEAF: u32 = 1 << 31;
 pub const RIGHT_LEAF: u32 = 1 << 30;
 const INDEX: u32 = RIGHT_LEAF - 1;
-/// The end of a traversal (no node).
-pub const NO_NODE: u32 = u32::MAX;
 /// The finest cell: 2^-100 (biased exponent 27), far above the subnormals a GPU
 /// may flush to zero, so host and kernel derive the same grids.
 const MIN_EXPONENT: u32 = 27;
@@ -88,7 +86,7 @@ impl GpuGrid {
     }
 
     /// The box of bytes `byte` (low corner) and `byte + 1` (high) of `quantized`.
-    pub fn decode_box(&self, quantized: [u32; 3], byte: u32) -> (Vec3, Vec3) {
+    fn decode_box(&self, quantized: [u32; 3], byte: u32) -> (Vec3, Vec3) {
         let corner = |b: u32| Vec3::from_array(std::array::from_fn(|a| self.decode(a, (quantized[a] >> (8 * b)) & 0xff)));
         (corner(byte), corner(byte + 1))
     }
@@ -175,6 +173,9 @@ mod tests {
     use super::*;
     use crate::bvh::MAX_DEPTH;
     use crate::test_rng::Rng;
+
+    /// The end of a traversal, as NO_NODE in shaders/types.wgsl.
+    const NO_NODE: u32 = u32::MAX;
 
     fn sphere_bounds(spheres: &[(Vec3, f32)]) -> Vec<(Vec3, Vec3)> {
         spheres.iter().map(|&(c, r)| (c - r, c + r)).collect()
