@@ -3,6 +3,10 @@
 
 const BVH_STACK: u32 = 32u;
 
+// A lane whose ray missed both children waits for the leaf phase to pop, so the
+// descent loop only descends (its body stays small and lanes stay in step).
+const NEEDS_POP: u32 = 0xfffffffeu;
+
 // Pending far children with their entry distances, so a pop needs no second
 // box test: it is skipped once a closer hit has been found. At module scope, so
 // they are zeroed once per invocation, not once per traversal (a kernel traces
@@ -64,10 +68,10 @@ fn decode(grid: Grid, q: vec3<u32>, shift: vec3<u32>) -> vec3<f32> {
 // transmissive occluders let light through, multiplying the transmittance by
 // their k_t, and only opaque ones stop it.
 //
-// The loop descends through interior nodes until it reaches a leaf, then tests
-// the leaf's primitives ("while-while", Aila & Laine 2009): the lanes of a SIMD
-// group that walk in step then run one kind of work at a time instead of paying
-// for both in every iteration.
+// The loop descends through interior nodes until it reaches a leaf (or misses
+// both children), then tests the leaf's primitives and pops ("while-while",
+// Aila & Laine 2009): the lanes of a SIMD group that walk in step then run one
+// kind of work at a time instead of paying for both in every iteration.
 fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) -> Hit {
     var hit = Hit(MISS, 0u, vec3<f32>(1.0), 0u);
     var t_max = t_max_in;
@@ -98,7 +102,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 let left = first | (node.children & LEAF);
                 let right = (first + 1u) | ((node.children << 1u) & LEAF);
                 if min(t_left, t_right) == MISS {
-                    index = pop(&top, t_max, &grid);
+                    index = NEEDS_POP;
                 } else {
                     let near_first = t_left <= t_right;
                     if max(t_left, t_right) != MISS {
@@ -118,35 +122,34 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 }
             }
         }
-        if index == NO_NODE {
-            break;
-        }
-        hit.nodes++;
-        let leaf = nodes[index & ~LEAF].quantized;
-        for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
-            if !any_hit {
-                // Equal distances (coincident surfaces) go to the lower object
-                // id, so the winner does not depend on the order of visits.
-                let t = intersect_prim(i, ray, t_min, next_up(t_max));
-                if t != MISS && (t < t_max || (t == t_max && prims[i].object < prims[hit.prim].object)) {
-                    t_max = t;
+        if index != NEEDS_POP {
+            hit.nodes++;
+            let leaf = nodes[index & ~LEAF].quantized;
+            for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
+                if !any_hit {
+                    // Equal distances (coincident surfaces) go to the lower object
+                    // id, so the winner does not depend on the order of visits.
+                    let t = intersect_prim(i, ray, t_min, next_up(t_max));
+                    if t != MISS && (t < t_max || (t == t_max && prims[i].object < prims[hit.prim].object)) {
+                        t_max = t;
+                        hit.t = t;
+                        hit.prim = i;
+                    }
+                    continue;
+                }
+                let t = intersect_prim(i, ray, t_min, t_max);
+                if t == MISS {
+                    continue;
+                }
+                let m = materials[prim_material(prims[i])];
+                if tinted && any(m.transmit > vec3<f32>(0.0)) {
+                    hit.transmittance *= m.transmit;
+                } else {
                     hit.t = t;
                     hit.prim = i;
+                    hit.transmittance = vec3<f32>(0.0);
+                    return hit;
                 }
-                continue;
-            }
-            let t = intersect_prim(i, ray, t_min, t_max);
-            if t == MISS {
-                continue;
-            }
-            let m = materials[prim_material(prims[i])];
-            if tinted && any(m.transmit > vec3<f32>(0.0)) {
-                hit.transmittance *= m.transmit;
-            } else {
-                hit.t = t;
-                hit.prim = i;
-                hit.transmittance = vec3<f32>(0.0);
-                return hit;
             }
         }
         index = pop(&top, t_max, &grid);

@@ -174,8 +174,10 @@ mod tests {
     use crate::bvh::MAX_DEPTH;
     use crate::test_rng::Rng;
 
-    /// The end of a traversal, as NO_NODE in shaders/types.wgsl.
+    /// The end of a traversal and a ray that missed both children, as NO_NODE
+    /// and NEEDS_POP in the kernel.
     const NO_NODE: u32 = u32::MAX;
+    const NEEDS_POP: u32 = u32::MAX - 1;
 
     fn sphere_bounds(spheres: &[(Vec3, f32)]) -> Vec<(Vec3, Vec3)> {
         spheres.iter().map(|&(c, r)| (c - r, c + r)).collect()
@@ -350,10 +352,11 @@ mod tests {
 
     /// Closest hit as `traverse` in bvh.wgsl finds it, with the same fixed
     /// stack: down through interior records nearest child first, the far one
-    /// pushed with its entry distance, the near one's grid derived from its box;
-    /// then a leaf's primitives; pops skip entries behind the current hit and
-    /// load the grid of the node they return to; equal distances go to the lower
-    /// primitive. Returns (t, input primitive index) and the most stack entries used.
+    /// pushed with its entry distance, the near one's grid derived from its box,
+    /// until a leaf or a miss of both children; then the leaf's primitives and a
+    /// pop, which skips entries behind the current hit and loads the grid of the
+    /// node it returns to; equal distances go to the lower primitive. Returns
+    /// (t, input primitive index) and the most stack entries used.
     fn closest_hit(bvh: &Bvh, spheres: &[(Vec3, f32)], origin: Vec3, dir: Vec3) -> (Option<(f32, u32)>, usize) {
         let gpu = bvh.gpu();
         let inv_dir = dir.recip();
@@ -373,8 +376,8 @@ mod tests {
                 let near_first = t_left.unwrap_or(f32::INFINITY) <= t_right.unwrap_or(f32::INFINITY);
                 let ((near, near_box), far) = if near_first { ((left, left_box), right) } else { ((right, right_box), left) };
                 if t_left.is_none() && t_right.is_none() {
-                    index = pop(&gpu, &stack, &mut top, &mut grid, t_max(&best));
-                    continue;
+                    index = NEEDS_POP;
+                    break;
                 }
                 if let (Some(a), Some(b)) = (t_left, t_right) {
                     stack[top] = (far, a.max(b));
@@ -387,7 +390,8 @@ mod tests {
             if index == NO_NODE {
                 return (best, most);
             }
-            for p in leaf_range(&gpu, index) {
+            let leaf = if index == NEEDS_POP { 0..0 } else { leaf_range(&gpu, index) };
+            for p in leaf {
                 let p = bvh.order[p as usize];
                 let (center, radius) = spheres[p as usize];
                 let Some(t) = hit_sphere(origin, dir, center, radius) else { continue };
