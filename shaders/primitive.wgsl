@@ -4,7 +4,7 @@
 // fields its kind uses (a load per SIMD lane is what a software rasteriser
 // pays most for).
 fn intersect_prim(i: u32, ray: Ray, t_min: f32, t_max: f32) -> f32 {
-    switch prims[i].kind_material & 0xffu {
+    switch prim_kind(prims[i]) {
         case PRIM_SPHERE: { return sphere_intersect(prims[i], ray, t_min, t_max); }
         case PRIM_TRIANGLE: { return triangle_intersect(prims[i], ray, t_min, t_max); }
         case PRIM_POLYGON: { return polygon_intersect(prims[i], ray, t_min, t_max); }

@@ -4,7 +4,6 @@
 // here serve the primary kernel too.
 
 const RAY_STACK: u32 = 17u; // MAX_DEPTH_LIMIT + 1: each level leaves one sibling pending
-const WORKGROUP: u32 = 64u;
 
 var<private> local_stats: array<u32, STAT_COUNT>;
 

@@ -259,7 +259,7 @@ impl Renderer {
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&self.primary);
-            pass.set_bind_group(0, &scene.trace_bind, &[]);
+            pass.set_bind_group(0, &scene.scene_bind, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         }
         encoder.copy_buffer_to_buffer(&scene.accum, 0, &readback, 0, PIXEL_BYTES);

@@ -140,7 +140,7 @@ pub struct SceneBuffers {
     pub(crate) globals_buffer: wgpu::Buffer,
     pub(crate) accum: wgpu::Buffer,
     pub(crate) stats: wgpu::Buffer,
-    pub(crate) trace_bind: wgpu::BindGroup,
+    pub(crate) scene_bind: wgpu::BindGroup,
     pub(crate) materials: wgpu::Buffer,
     pub(crate) lights: wgpu::Buffer,
     /// Bytes of geometry, BVH, materials and lights on the device.
@@ -234,13 +234,13 @@ impl Renderer {
             .enumerate()
             .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
             .collect();
-        let trace_bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("trace"),
+        let scene_bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
             layout: &self.scene_layout,
             entries: &entries,
         });
         let scene_bytes = arrays[..6].iter().map(|(_, b)| b.len() as u64).sum();
-        Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, trace_bind, materials, lights, scene_bytes })
+        Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, scene_bind, materials, lights, scene_bytes })
     }
 
     /// Renders `options.spp` samples per pixel and resolves them, calling
@@ -350,7 +350,7 @@ impl Renderer {
         self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(if options.view.is_primary_only() { &self.primary } else { &self.trace });
-        pass.set_bind_group(0, &scene.trace_bind, &[]);
+        pass.set_bind_group(0, &scene.scene_bind, &[]);
         pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
     }
 
