@@ -1,4 +1,4 @@
-//! The BVH as the trace kernel reads it. Record `i` stands for node `i` of the
+//! The BVH as the kernels read it. Record `i` stands for node `i` of the
 //! binary tree (children adjacent, as the builder lays them out):
 //!
 //! - an interior record holds both children's boxes, quantised to 8 bits per
@@ -110,7 +110,7 @@ impl GpuGrid {
 }
 
 /// The biased exponent of the smallest power of two `c` with 254·c ≥ `extent`,
-/// from the bits alone, as `cell_exponents` in bvh.wgsl: for extent m·2^E
+/// from the bits alone, as `derived_grid` in bvh.wgsl does: for extent m·2^E
 /// (1 ≤ m < 2) that is 2^(E−7) when m ≤ 254/128, else 2^(E−6).
 fn cell_exponent(extent: f32) -> u32 {
     let bits = extent.to_bits() & 0x7fff_ffff;
