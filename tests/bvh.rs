@@ -1,5 +1,5 @@
 //! BVH traversal on the GPU against brute force (every ray tests every
-//! primitive): identical images, depths and ray counts, on real SPD scenes and
+//! primitive): identical images, depths and ray counts, on generated SPD scenes and
 //! on random scenes of every primitive kind.
 
 mod support;
@@ -7,7 +7,7 @@ mod support;
 use glint_gpu::{Acceleration, Image, RayStats, RenderOptions};
 use glint_scene::gpu_types::View;
 use glint_scene::Scene;
-use support::{render_options, render_with, spd_dir};
+use support::{render_options, render_with};
 
 /// Renders `scene` shaded and as depth with the BVH and by brute force, and
 /// asserts both agree to the bit. Returns the BVH's shaded image and counts.
@@ -26,8 +26,8 @@ fn assert_bvh_matches_brute_force(scene: &Scene, what: &str) -> (Image, RayStats
 /// Small SPD scenes, and every primitive kind shows up.
 #[test]
 fn spd_scenes_render_identically_with_and_without_the_bvh() {
-    for name in ["balls_s1", "gears_s1", "mount_s1", "rings_s1", "teapot_s1", "teapot_s2", "tetra_s2", "tree_s2", "jacks_s1", "shells_s1", "lattice_s1", "sombrero_s1", "nurbtst_s1"] {
-        let path = spd_dir().join(format!("{name}.nff"));
+    for name in ["balls:1", "gears:1", "mount:1", "rings:1", "teapot:1", "teapot:2", "tetra:2", "tree:2", "jacks:1", "shells:1", "lattice:1", "sombrero:1", "nurbtst:1"] {
+        let path = std::path::PathBuf::from(format!("spd:{name}"));
         let mut scene = glint_scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         (scene.width, scene.height) = (48, 48);
         let (bvh, bvh_stats) = assert_bvh_matches_brute_force(&scene, name);

@@ -2,7 +2,7 @@
 //! written inline as TOML.
 #![allow(dead_code)] // each test binary uses a different part of this module
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::OnceLock;
 
 use glint_gpu::shaders::ShaderSource;
@@ -68,14 +68,4 @@ pub fn assert_images_equal(a: &[[f32; 4]], b: &[[f32; 4]], allowed: usize, what:
         differing.len(),
         &differing[..differing.len().min(3)]
     );
-}
-
-/// The Standard Procedural Databases' scenes: `$GLINT_SPD_DIR`, by default
-/// `../shared/spd` beside the repository.
-pub fn spd_dir() -> PathBuf {
-    let dir = std::env::var_os("GLINT_SPD_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/spd")));
-    assert!(dir.is_dir(), "the SPD scenes are missing: {} (set GLINT_SPD_DIR)", dir.display());
-    dir
 }

@@ -12,8 +12,9 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct BenchArgs {
-    /// Scene files (default: scenes/bench/*.toml and the classic SPD benchmark
-    /// sizes from $GLINT_SPD_DIR, default ../shared/spd)
+    /// Scene files or spd:NAME[:SIZE] (default: the SPD databases at their
+    /// benchmark sizes, and scenes/bench/*.toml when run from the repository)
+    #[arg(value_parser = crate::scene_arg::parse)]
     scenes: Vec<PathBuf>,
     #[arg(long, default_value_t = 512)]
     width: u32,
@@ -36,10 +37,10 @@ enum AccelArg {
     Brute,
 }
 
-/// The classic benchmark sizes of the Standard Procedural Databases.
+/// The Standard Procedural Databases benchmarked by default: the classic
+/// sizes, and sizes of the others comparable to them.
 const SPD_BENCHMARKS: &[&str] = &[
-    "balls_s4", "gears_s4", "mount_s6", "rings_s7", "teapot_s6", "tetra_s6", "tree_s11", "shells_s5", "lattice_s12",
-    "sombrero_s2", "jacks_s3", "nurbtst_s1",
+    "balls", "gears", "mount", "rings", "teapot", "tetra", "tree", "shells", "lattice", "sombrero:2", "jacks:3", "nurbtst",
 ];
 
 fn default_scenes() -> Vec<PathBuf> {
@@ -47,8 +48,7 @@ fn default_scenes() -> Vec<PathBuf> {
         .map(|dir| dir.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "toml")).collect())
         .unwrap_or_default();
     scenes.sort();
-    let spd = std::env::var_os("GLINT_SPD_DIR").map_or_else(|| PathBuf::from("../shared/spd"), PathBuf::from);
-    scenes.extend(SPD_BENCHMARKS.iter().map(|name| spd.join(format!("{name}.nff"))).filter(|p| p.is_file()));
+    scenes.extend(SPD_BENCHMARKS.iter().map(|spec| PathBuf::from(format!("{}{spec}", glint_scene::spd::PREFIX))));
     scenes
 }
 
@@ -66,9 +66,6 @@ struct Measurement {
 
 pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
-    if scenes.is_empty() {
-        return Err(Failure::new(exit::USAGE, "no scenes to benchmark: name some, or run from the repository root"));
-    }
     let gpu = Gpu::new()?;
     let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
     let acceleration = match args.accel {

@@ -3,6 +3,8 @@
 mod bench;
 mod info;
 mod render;
+mod scene_arg;
+mod spd;
 mod view;
 
 use std::process::ExitCode;
@@ -38,6 +40,8 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Open a scene in the interactive viewer.
     View(view::ViewArgs),
+    /// Write one of the Standard Procedural Databases as an NFF file.
+    Spd(spd::SpdArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -83,6 +87,7 @@ fn main() -> ExitCode {
         Command::Info => info::run(),
         Command::Bench(args) => bench::run(&args),
         Command::View(args) => view::run(args),
+        Command::Spd(args) => spd::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -16,7 +16,8 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Scene file (.toml, .nff or .obj)
+    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE] for a generated SPD scene
+    #[arg(value_parser = crate::scene_arg::parse)]
     scene: PathBuf,
     /// Output image: .png (display values), .exr or .pfm (linear float)
     #[arg(short, long)]

@@ -11,7 +11,8 @@ const DEFAULT_SCENE: &str = "scenes/showcase.toml";
 
 #[derive(Args)]
 pub struct ViewArgs {
-    /// Scene file (.toml, .nff or .obj); default: scenes/showcase.toml when it exists
+    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]; default: scenes/showcase.toml when it exists
+    #[arg(value_parser = crate::scene_arg::parse)]
     scene: Option<PathBuf>,
 }
 

@@ -14,6 +14,7 @@ pub mod nff;
 pub mod obj;
 pub mod scene;
 pub mod shape;
+pub mod spd;
 #[cfg(test)]
 mod test_rng;
 pub mod toml_scene;
@@ -106,16 +107,21 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
     load_with(path, &LoadOptions::default())
 }
 
-/// Loads a scene, choosing the reader by the file's extension.
+/// Loads a scene, choosing the reader by the file's extension; a name
+/// `spd:NAME[:SIZE]` generates one of the Standard Procedural Databases.
 pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError> {
+    let nff_options = NffOptions { angle: options.nff_angle };
+    if let Some(spec) = spd::spec_of(path) {
+        return nff::parse(&spd::generate(path, spec)?, path, &nff_options);
+    }
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("toml") => toml_scene::load(path),
-        Some("nff") => nff::load(path, &NffOptions { angle: options.nff_angle }),
+        Some("nff") => nff::load(path, &nff_options),
         Some("obj") => obj::load(path),
         _ => Err(LoadError::new(
             path,
             None,
-            "unknown scene format: expected a .toml, .nff or .obj file",
+            "unknown scene format: expected a .toml, .nff or .obj file, or spd:NAME",
         )),
     }
 }

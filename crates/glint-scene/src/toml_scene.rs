@@ -15,7 +15,7 @@
 //!   4×4 matrix (last row `[0, 0, 0, 1]`) acting on column vectors. Normals
 //!   transform by the inverse transpose. An OBJ named by several objects is read
 //!   once and copied, transformed, into each; each OBJ part becomes one object.
-//! * `[[include]]` with `path = "part.nff"` merges an NFF file's objects, lights
+//! * `[[include]]` with `path = "part.nff"` (or `spd:NAME[:SIZE]`) merges an NFF file's objects, lights
 //!   and materials (after the TOML file's own objects, in include order); its
 //!   `v` block (optional in an included file) and background are ignored, the
 //!   TOML file's camera and image apply. Its lights keep their NFF intensity
@@ -35,6 +35,7 @@ use toml::Spanned;
 
 use crate::scene::MAX_DEPTH_LIMIT;
 use crate::icosphere;
+use crate::spd;
 use crate::shape::{polygon_non_planarity, polygon_normal};
 use crate::{nff, obj, ReadError};
 use crate::{
@@ -406,11 +407,16 @@ impl Builder<'_> {
         warnings: &mut Vec<LoadError>,
     ) -> Result<(), LoadError> {
         let rel = &include.get_ref().path;
-        let path = self.relative(rel.get_ref());
-        if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nff")) {
-            return Err(self.error_at(rel, "path: only .nff files can be included (place an .obj with an object of type \"mesh\")"));
-        }
-        let source = self.read_referenced(rel, &path)?;
+        let (source, path) = if let Some(spec) = spd::spec_of(Path::new(rel.get_ref())) {
+            let generated = spd::generate(Path::new(rel.get_ref()), spec).map_err(|e| self.error_at(rel, format!("path: {}", e.message)))?;
+            (generated, PathBuf::from(rel.get_ref()))
+        } else {
+            let path = self.relative(rel.get_ref());
+            if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("nff")) {
+                return Err(self.error_at(rel, "path: only .nff files or spd:NAME can be included (place an .obj with an object of type \"mesh\")"));
+            }
+            (self.read_referenced(rel, &path)?, path)
+        };
         let contents = nff::parse_contents(&source, &path, &nff::NffOptions::default())?;
         let offset = materials.len();
         materials.extend(contents.materials);
@@ -1246,8 +1252,12 @@ path = "part.nff"
             assert_eq!(s.objects[1].shapes[0], Shape::Sphere { center: Vec3::ZERO, radius: 1.0 });
             assert_eq!(s.lights.len(), 3);
             assert_eq!(s.lights[2].color, Vec3::Y);
-            assert!((s.lights[1].intensity - 0.5f32.sqrt()).abs() < 1e-7);
+            assert!((s.lights[1].intensity - 2f32.sqrt() / 4.0).abs() < 1e-7, "SPD's √n / (2n) for the file's 2 lights");
             assert_eq!(s.camera.eye, Vec3::new(0.0, 0.0, 5.0));
+
+            // A generated SPD database is included like a file.
+            let s = scene_file(dir.path(), "[[include]]\npath = \"spd:tetra:1\"\n").unwrap();
+            assert_eq!((s.objects.len(), s.lights.len()), (4, 1));
         }
 
         #[test]
@@ -1260,6 +1270,8 @@ path = "part.nff"
                 ("[[include]]\npath = \"cube.obj\"\n", "scene.toml:11:", "only .nff"),
                 ("[[include]]\npath = \"bad.nff\"\n", "bad.nff:2:1:", "end of file"),
                 ("[[include]]\npath = \"bad.nff\"\ndepth = 2\n", "scene.toml:12:", "depth"),
+                ("[[include]]\npath = \"spd:tetras\"\n", "scene.toml:11:", "no SPD database named `tetras`"),
+                ("[[include]]\npath = \"spd:tetra:99\"\n", "scene.toml:11:", "a whole number from 1 to 10"),
             ] {
                 let e = scene_file(dir.path(), extra).unwrap_err().to_string();
                 assert!(e.contains(at) && e.contains(needle), "{extra}: {e}");
