@@ -83,25 +83,30 @@ pub fn fov_y_from_angle(angle_degrees: f64, height: u32, convention: NffAngle) -
     }
 }
 
-/// NFF leaves light intensity open; Glint gives each of the file's `n` lights
-/// intensity 1/√n, so that a scene keeps roughly the same brightness whether it
-/// has one light or many.
+/// NFF leaves light intensity open. Glint follows SPD's Readme: with `n`
+/// lights, each light and the ambient light have intensity √n / (2n), which
+/// keeps a scene about as bright whether it has one light or many.
 pub fn light_intensity(light_count: usize) -> f32 {
-    1.0 / (light_count.max(1) as f32).sqrt()
+    let n = light_count.max(1) as f32;
+    n.sqrt() / (2.0 * n)
 }
 
 /// The material of an NFF `f r g b Kd Ks Shine T index_of_refraction` line:
 ///
-/// * colour O_d = (r, g, b), k_d = Kd, k_a = 0 (NFF has no ambient term);
+/// * colour O_d = (r, g, b), k_d = Kd, and k_a = Kd (SPD asks for an ambient
+///   term on every object; NFF has no coefficient of its own for it);
 /// * highlights k_s = Ks, white (O_s unset), Phong exponent n = Shine, with the
 ///   Phong (R·V) model, the NFF/SPD convention;
 /// * mirror reflectance k_m = Ks (grey), transmittance k_t = T (grey), and the
 ///   index of refraction `ior` (an ior ≤ 0 on an opaque material, as some SPD
-///   files write, is read as 1).
+///   files write, is read as 1);
+/// * a transmitter also reflects, by Schlick's Fresnel term: a classic tracer
+///   spawns a reflection ray wherever it spawns a refraction ray, and SPD's ray
+///   counts assume it (gears' glass has Ks = 0 and would otherwise not reflect).
 pub fn material(name: String, color: Vec3, kd: f32, ks: f32, shine: f32, t: f32, ior: f32) -> Material {
     Material {
         name,
-        ambient: 0.0,
+        ambient: kd,
         diffuse: kd,
         specular: ks,
         shininess: shine,
@@ -112,7 +117,7 @@ pub fn material(name: String, color: Vec3, kd: f32, ks: f32, shine: f32, t: f32,
         reflect: Vec3::splat(ks),
         transmit: Vec3::splat(t),
         ior: if ior > 0.0 { ior } else { 1.0 },
-        fresnel: false,
+        fresnel: t > 0.0,
     }
 }
 
@@ -142,7 +147,7 @@ pub fn parse(source: &str, path: &Path, options: &NffOptions) -> Result<Scene, L
         height: view.height,
         background: contents.background.unwrap_or(Vec3::ZERO),
         camera: view.camera,
-        ambient: Vec3::ZERO,
+        ambient: Vec3::splat(light_intensity(contents.lights.len())),
         lights: contents.lights,
         materials: contents.materials,
         objects: contents.objects,
@@ -599,7 +604,6 @@ impl<'a> Parser<'a> {
 mod tests {
     use super::*;
     use std::fmt::Write as _;
-    use std::path::PathBuf;
 
     const VIEW: &str = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.1\nresolution 64 48\n";
 
@@ -624,7 +628,7 @@ mod tests {
         assert_eq!(s.camera.eye, Vec3::new(0.0, 0.0, 5.0));
         assert_eq!(s.camera.up, Vec3::Y);
         assert_eq!(s.background, Vec3::ZERO);
-        assert_eq!(s.ambient, Vec3::ZERO);
+        assert_eq!(s.ambient, Vec3::splat(0.5), "no lights: as if there were one");
         assert_eq!(s.render, RenderSettings::default());
         assert!(s.objects.is_empty() && s.lights.is_empty() && s.warnings.is_empty());
     }
@@ -660,8 +664,11 @@ mod tests {
         assert_eq!(s.lights[0].color, Vec3::ONE);
         assert_eq!(s.lights[1].color, Vec3::X);
         assert_eq!(s.lights[2].kind, LightKind::Point { position: Vec3::new(7.0, 8.0, 9.0) });
+        // SPD's Readme: √n / (2n) for each light and for the ambient light.
+        let readme = 3f32.sqrt() / 6.0;
+        assert!((s.ambient - Vec3::splat(readme)).abs().max_element() < 1e-7);
         for l in &s.lights {
-            assert!((l.intensity - 1.0 / 3f32.sqrt()).abs() < 1e-7);
+            assert!((l.intensity - readme).abs() < 1e-7);
             assert_eq!(l.attenuation, Attenuation::None);
             assert!(l.enabled);
         }
@@ -672,14 +679,15 @@ mod tests {
         let s = parse_str("f 1 0.5 0.25 0.6 0.3 40 0.2 1.5\ns 0 0 0 1\nf 1 1 1 1 0 0 0 0\ns 0 0 0 1\n").unwrap();
         let m = &s.materials[s.objects[0].material];
         assert_eq!(m.color, Vec3::new(1.0, 0.5, 0.25));
-        assert_eq!((m.ambient, m.diffuse, m.specular, m.shininess), (0.0, 0.6, 0.3, 40.0));
+        assert_eq!((m.ambient, m.diffuse, m.specular, m.shininess), (0.6, 0.6, 0.3, 40.0));
         assert_eq!(m.specular_color, None);
         assert_eq!(m.specular_model, SpecularModel::Phong);
         assert_eq!(m.reflect, Vec3::splat(0.3));
         assert_eq!(m.transmit, Vec3::splat(0.2));
         assert_eq!(m.ior, 1.5);
-        assert!(!m.fresnel);
+        assert!(m.fresnel, "a transmitter reflects by Fresnel's term");
         let opaque = &s.materials[s.objects[1].material];
+        assert!(!opaque.fresnel);
         assert_eq!(opaque.ior, 1.0, "ior 0 on an opaque material reads as 1");
     }
 
@@ -916,19 +924,12 @@ mod tests {
             }
         }
         assert_eq!(scene.lights.len(), 1);
-        assert_eq!(scene.lights[0].intensity, 1.0);
+        assert_eq!(scene.lights[0].intensity, 0.5);
     }
 
-    fn spd_dir() -> PathBuf {
-        let dir = std::env::var_os("GLINT_SPD_DIR")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/spd")));
-        assert!(
-            dir.is_dir(),
-            "SPD directory {} not found: set GLINT_SPD_DIR to the folder holding the SPD .nff files",
-            dir.display()
-        );
-        dir
+    /// A Standard Procedural Database scene, generated.
+    fn spd(spec: &str) -> Scene {
+        crate::load(Path::new(&format!("spd:{spec}"))).unwrap_or_else(|e| panic!("{e}"))
     }
 
     #[derive(Debug, Default, PartialEq)]
@@ -955,65 +956,53 @@ mod tests {
     }
 
     #[test]
-    fn every_spd_file_loads() {
-        let dir = spd_dir();
-        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|e| e == "nff"))
-            .collect();
-        files.sort();
-        assert!(files.len() >= 40, "expected the SPD set in {}, found {} .nff files", dir.display(), files.len());
+    fn every_spd_database_loads() {
         let c = |spheres, cones, polygons, triangles, lights, warnings| Counts { spheres, cones, polygons, triangles, lights, warnings };
-        let expected: HashMap<&str, Counts> = [
-            ("balls_s1", c(10, 0, 1, 0, 3, 0)),
-            ("balls_s4", c(7381, 0, 1, 0, 3, 0)),
-            ("gears_s1", c(0, 0, 147, 0, 5, 0)),
-            ("gears_s4", c(0, 0, 9345, 0, 5, 0)),
-            ("mount_s1", c(4, 0, 8, 0, 1, 0)),
-            ("mount_s6", c(4, 0, 8192, 0, 1, 0)),
-            ("rings_s1", c(30, 30, 1, 0, 3, 0)),
-            ("rings_s7", c(4200, 4200, 1, 0, 3, 0)),
+        let expected: Vec<(&str, Counts)> = vec![
+            ("balls:1", c(10, 0, 1, 0, 3, 0)),
+            ("balls:4", c(7381, 0, 1, 0, 3, 0)),
+            ("gears:1", c(0, 0, 147, 0, 5, 0)),
+            ("gears:4", c(0, 0, 9345, 0, 5, 0)),
+            ("mount:1", c(4, 0, 8, 0, 1, 0)),
+            ("mount:6", c(4, 0, 8192, 0, 1, 0)),
+            ("rings:1", c(30, 30, 1, 0, 3, 0)),
+            ("rings:7", c(4200, 4200, 1, 0, 3, 0)),
             // Two degenerate patches, each written as two triangles: 4 warnings.
-            ("teapot_s1", c(0, 0, 1, 52, 2, 4)),
-            ("teapot_s6", c(0, 0, 36, 2256, 2, 0)),
-            ("tetra_s1", c(0, 0, 4, 0, 1, 0)),
-            ("tetra_s6", c(0, 0, 4096, 0, 1, 0)),
-            ("tree_s1", c(3, 3, 1, 0, 7, 0)),
-            ("tree_s11", c(4095, 4095, 1, 0, 7, 0)),
-            ("jacks_s3", c(438, 219, 0, 0, 1, 0)),
-            ("shells_s5", c(5761, 0, 0, 0, 1, 0)),
-            ("lattice_s12", c(2197, 6084, 0, 0, 6, 0)),
-            ("sombrero_s2", c(0, 0, 7938, 0, 1, 0)),
-            ("nurbtst_s1", c(0, 0, 0, 1500, 1, 0)),
+            ("teapot:1", c(0, 0, 1, 52, 2, 4)),
+            ("teapot:6", c(0, 0, 36, 2256, 2, 0)),
+            ("tetra:1", c(0, 0, 4, 0, 1, 0)),
+            ("tetra:6", c(0, 0, 4096, 0, 1, 0)),
+            ("tree:1", c(3, 3, 1, 0, 7, 0)),
+            ("tree:11", c(4095, 4095, 1, 0, 7, 0)),
+            ("jacks:3", c(438, 219, 0, 0, 1, 0)),
+            ("shells:5", c(5761, 0, 0, 0, 1, 0)),
+            ("lattice:12", c(2197, 6084, 0, 0, 6, 0)),
+            ("sombrero:2", c(0, 0, 7938, 0, 1, 0)),
+            ("nurbtst:1", c(0, 0, 0, 1500, 1, 0)),
         ]
         .into_iter()
         .collect();
-        let mut checked = 0;
-        for file in &files {
-            let scene = load(file, &NffOptions::default()).unwrap_or_else(|e| panic!("{e}"));
-            let name = file.file_stem().unwrap().to_str().unwrap();
-            let got = counts(&scene);
-            if name != "teapot_s1" {
-                assert!(scene.warnings.is_empty(), "{name}: {:?}", scene.warnings);
+        for (spec, want) in &expected {
+            let scene = spd(spec);
+            if *spec != "teapot:1" {
+                assert!(scene.warnings.is_empty(), "{spec}: {:?}", scene.warnings);
             }
-            assert!(scene.primitive_count() > 0, "{name}");
-            if let Some(want) = expected.get(name) {
-                assert_eq!(&got, want, "{name}");
-                checked += 1;
+            assert_eq!(&counts(&scene), want, "{spec}");
+        }
+        for database in crate::spd::DATABASES {
+            for size in 1..=database.max_size.min(2) {
+                assert!(spd(&format!("{}:{size}", database.name)).primitive_count() > 0, "{} size {size}", database.name);
             }
         }
-        assert_eq!(checked, expected.len(), "some expected SPD files are missing from {}", dir.display());
     }
 
     #[test]
     fn spd_details() {
-        let dir = spd_dir();
-        let teapot = load(&dir.join("teapot_s1.nff"), &NffOptions::default()).unwrap();
+        let teapot = spd("teapot:1");
         for w in &teapot.warnings {
-            assert!(w.to_string().contains("teapot_s1.nff:") && w.to_string().contains("degenerate patch"), "{w}");
+            assert!(w.to_string().contains("spd:teapot:1:") && w.to_string().contains("degenerate patch"), "{w}");
         }
-        let jacks = load(&dir.join("jacks_s1.nff"), &NffOptions::default()).unwrap();
+        let jacks = spd("jacks:1");
         assert_eq!((jacks.width, jacks.height), (256, 256));
         let Projection::Perspective { fov_y_degrees } = jacks.camera.projection else { panic!() };
         let want = fov_y_from_angle(25.0, 256, NffAngle::Centers).unwrap() as f32;
@@ -1021,27 +1010,31 @@ mod tests {
         assert!(fov_y_degrees > 25.0 && fov_y_degrees < 25.2);
         assert_eq!(jacks.background, Vec3::new(0.2, 0.05, 0.2));
 
-        let lattice = load(&dir.join("lattice_s12.nff"), &NffOptions::default()).unwrap();
+        let lattice = spd("lattice:12");
         assert_eq!(lattice.materials.len(), 4, "8281 `f` lines, 4 distinct");
 
-        let mount = load(&dir.join("mount_s1.nff"), &NffOptions::default()).unwrap();
+        let mount = spd("mount:1");
         let glass = &mount.materials[mount.objects[0].material];
         assert_eq!((glass.transmit, glass.ior), (Vec3::splat(0.9), 1.5));
 
-        let gears = load(&dir.join("gears_s1.nff"), &NffOptions::default()).unwrap();
+        let gears = spd("gears:1");
         let big = gears.objects.iter().flat_map(|o| &o.shapes).filter(|s| matches!(s, Shape::Polygon { vertices } if vertices.len() == 144));
         assert!(big.count() > 0);
 
         // The crate's entry points pick this reader by extension and pass the angle option.
-        let balls = crate::load(&dir.join("balls_s1.nff")).unwrap();
-        let edges = crate::load_with(&dir.join("balls_s1.nff"), &crate::LoadOptions { nff_angle: NffAngle::Edges }).unwrap();
+        let balls = spd("balls:1");
+        let edges = crate::load_with(Path::new("spd:balls:1"), &crate::LoadOptions { nff_angle: NffAngle::Edges }).unwrap();
         assert_eq!(edges.camera.projection, Projection::Perspective { fov_y_degrees: 45.0 });
         assert_ne!(balls.camera.projection, edges.camera.projection);
         assert_eq!(balls.objects, edges.objects);
-        let e = crate::load(&dir.join("README.md")).unwrap_err().to_string();
+        let e = crate::load(Path::new("README.md")).unwrap_err().to_string();
         assert!(e.contains("README.md: unknown scene format"), "{e}");
+        for (spec, problem) in [("spd:teapots", "no SPD database named `teapots`"), ("spd:balls:0", "no size `0`"), ("spd:balls:x", "no size `x`")] {
+            let e = crate::load(Path::new(spec)).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("{spec}: ")) && e.contains(problem), "{e}");
+        }
 
-        let tree = load(&dir.join("tree_s1.nff"), &NffOptions::default()).unwrap();
+        let tree = spd("tree:1");
         assert!(tree.objects.iter().flat_map(|o| &o.shapes).any(|s| matches!(s, Shape::Cone { base_radius, apex_radius, .. } if base_radius != apex_radius)));
     }
 }
