@@ -76,6 +76,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     var hit = Hit(MISS, 0u, vec3<f32>(1.0), 0u);
     var t_max = t_max_in;
     let inv_dir = 1.0 / ray.dir;
+    let frame = ray_frame(ray);
     // Per axis, the corner byte of a quantised box the ray meets first (0 low,
     // 8 high) and last: choosing the planes by the direction's sign saves the
     // per-axis min and max of the textbook slab test.
@@ -129,15 +130,16 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 if !any_hit {
                     // Equal distances (coincident surfaces) go to the lower object
                     // id, so the winner does not depend on the order of visits.
-                    let t = intersect_prim(i, ray, t_min, next_up(t_max));
-                    if t != MISS && (t < t_max || (t == t_max && prims[i].object < prims[hit.prim].object)) {
+                    let t = intersect_prim(i, ray, frame, t_min, next_up(t_max));
+                    let closer = t < t_max || (t == t_max && hit.t != MISS && prims[i].object < prims[hit.prim].object);
+                    if t != MISS && closer {
                         t_max = t;
                         hit.t = t;
                         hit.prim = i;
                     }
                     continue;
                 }
-                let t = intersect_prim(i, ray, t_min, t_max);
+                let t = intersect_prim(i, ray, frame, t_min, t_max);
                 if t == MISS {
                     continue;
                 }

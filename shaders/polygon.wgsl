@@ -1,9 +1,10 @@
 // Ray–polygon intersection, as the lecture shows: hit the polygon's plane, then
-// decide inside/outside with the even-odd (crossing) rule in 2D, projecting onto
-// the coordinate plane where the polygon's normal is largest. Works for convex
-// and concave polygons alike.
+// decide inside/outside with the even-odd (crossing) rule, convex and concave
+// alike. The crossing test runs in the ray's frame (ray_frame.wgsl), where the
+// hit point is the origin and each edge's side is an exact function of its two
+// sheared vertices, so polygons sharing an edge leave no gap and no overlap.
 
-fn polygon_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
+fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
     let n = p.a.xyz;
     let denom = dot(n, ray.dir);
     if denom == 0.0 {
@@ -13,29 +14,21 @@ fn polygon_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
     if !(t > t_min && t < t_max) {
         return MISS;
     }
-    let hit = ray.origin + t * ray.dir;
-    // Drop the dominant axis of the normal.
-    let an = abs(n);
-    var ax = 1u;
-    var ay = 2u;
-    if an.y >= an.x && an.y >= an.z {
-        ax = 0u;
-        ay = 2u;
-    } else if an.z >= an.x && an.z >= an.y {
-        ax = 0u;
-        ay = 1u;
-    }
-    let q = vec2<f32>(hit[ax], hit[ay]);
+    // Count the edges crossing the +x half-line from the origin. A vertex on
+    // the line counts as above it, and an edge through the origin as crossing
+    // to its right: one consistent tie rule, as if the ray moved a hair up and
+    // then left, so a ray on a shared edge is inside exactly one polygon.
+    // Each vertex is moved into the frame at one place in the code, so that
+    // every polygon holding it gets the same numbers.
     var inside = false;
-    var prev = points[p.first + p.count - 1u].xyz;
-    for (var i = 0u; i < p.count; i++) {
-        let cur = points[p.first + i].xyz;
-        let a = vec2<f32>(prev[ax], prev[ay]) - q;
-        let b = vec2<f32>(cur[ax], cur[ay]) - q;
-        // Does edge a→b cross the +x half-line from q?
-        if (a.y > 0.0) != (b.y > 0.0) {
-            let x = a.x + (b.x - a.x) * (0.0 - a.y) / (b.y - a.y);
-            if x > 0.0 {
+    var prev: vec3<f32>;
+    for (var i = 0u; i <= p.count; i++) {
+        let cur = to_frame(frame, points[p.first + (i + p.count - 1u) % p.count].xyz);
+        let rising = cur.y >= 0.0;
+        if i > 0u && (prev.y >= 0.0) != rising {
+            // The edge meets y = 0 at x = edge(prev, cur) / (cur.y − prev.y).
+            let side = edge_sign(prev, cur);
+            if side == 0.0 || (side > 0.0) == rising {
                 inside = !inside;
             }
         }

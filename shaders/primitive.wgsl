@@ -2,12 +2,13 @@
 
 // Takes the primitive's index, not its value: each case then loads only the
 // fields its kind uses (a load per SIMD lane is what a software rasteriser
-// pays most for).
-fn intersect_prim(i: u32, ray: Ray, t_min: f32, t_max: f32) -> f32 {
+// pays most for). Triangles and polygons are tested in the ray's frame, which
+// the caller makes once per ray.
+fn intersect_prim(i: u32, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
     switch prim_kind(prims[i]) {
         case PRIM_SPHERE: { return sphere_intersect(prims[i], ray, t_min, t_max); }
-        case PRIM_TRIANGLE: { return triangle_intersect(prims[i], ray, t_min, t_max); }
-        case PRIM_POLYGON: { return polygon_intersect(prims[i], ray, t_min, t_max); }
+        case PRIM_TRIANGLE: { return triangle_intersect(prims[i], frame, t_min, t_max); }
+        case PRIM_POLYGON: { return polygon_intersect(prims[i], ray, frame, t_min, t_max); }
         default: { return cone_intersect(prims[i], ray, t_min, t_max); }
     }
 }

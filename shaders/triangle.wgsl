@@ -1,25 +1,23 @@
-// Ray–triangle intersection (Möller–Trumbore), two-sided.
+// Ray–triangle intersection, watertight (Woop, Benthin & Wald 2013; see
+// ray_frame.wgsl) and two-sided. A ray through a shared edge or vertex gets a
+// zero edge function from every triangle there and hits them all.
 
-fn triangle_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
-    let e1 = p.b.xyz - p.a.xyz;
-    let e2 = p.c.xyz - p.a.xyz;
-    let pv = cross(ray.dir, e2);
-    let det = dot(e1, pv);
+fn triangle_intersect(p: GpuPrim, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
+    let a = to_frame(frame, p.a.xyz);
+    let b = to_frame(frame, p.b.xyz);
+    let c = to_frame(frame, p.c.xyz);
+    let sides = vec3<f32>(edge_sign(b, c), edge_sign(c, a), edge_sign(a, b));
+    if any(sides < vec3<f32>(0.0)) && any(sides > vec3<f32>(0.0)) {
+        return MISS;
+    }
+    let u = edge(b, c);
+    let v = edge(c, a);
+    let w = edge(a, b);
+    let det = u + v + w;
     if det == 0.0 {
         return MISS;
     }
-    let inv = 1.0 / det;
-    let tv = ray.origin - p.a.xyz;
-    let u = dot(tv, pv) * inv;
-    if u < 0.0 || u > 1.0 {
-        return MISS;
-    }
-    let qv = cross(tv, e1);
-    let v = dot(ray.dir, qv) * inv;
-    if v < 0.0 || u + v > 1.0 {
-        return MISS;
-    }
-    let t = dot(e2, qv) * inv;
+    let t = (u * a.z + v * b.z + w * c.z) / det;
     return select(MISS, t, t > t_min && t < t_max);
 }
 

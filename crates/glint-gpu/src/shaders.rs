@@ -27,6 +27,7 @@ kernels! {
         "bindings.wgsl",
         "camera.wgsl",
         "sample.wgsl",
+        "ray_frame.wgsl",
         "sphere.wgsl",
         "triangle.wgsl",
         "polygon.wgsl",

@@ -1,8 +1,9 @@
 //! The primitives in f64: intersection and normals, written from the equations
 //! rather than ported from the WGSL, so that a mistake shared by both would have
-//! to be made twice.
+//! to be made twice. Triangles and polygons are tested in the ray's frame
+//! ([`RayFrame`]), which makes them watertight as the kernels are.
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use glint_scene::Shape;
 
 /// One primitive of the scene, converted to f64 once.
@@ -23,11 +24,7 @@ pub(crate) enum Geom {
         normal: DVec3,
         /// A point of the plane (the vertex average).
         origin: DVec3,
-        /// Orthonormal in-plane basis for the 2D inside test.
-        e1: DVec3,
-        e2: DVec3,
-        /// Vertices in that basis, relative to `origin`.
-        flat: Vec<DVec2>,
+        vertices: Vec<DVec3>,
     },
     Cone {
         base: DVec3,
@@ -44,12 +41,6 @@ pub(crate) enum Geom {
 
 fn d3(v: glam::Vec3) -> DVec3 {
     DVec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
-}
-
-/// Some unit vector perpendicular to unit `n`.
-pub(crate) fn perpendicular(n: DVec3) -> DVec3 {
-    let a = if n.x.abs() < 0.6 { DVec3::X } else if n.y.abs() < 0.6 { DVec3::Y } else { DVec3::Z };
-    (a - n * a.dot(n)).normalize()
 }
 
 impl Geom {
@@ -85,10 +76,7 @@ impl Geom {
                 }
                 let normal = area.normalize();
                 let origin = v.iter().copied().sum::<DVec3>() / v.len() as f64;
-                let e1 = perpendicular(normal);
-                let e2 = normal.cross(e1);
-                let flat = v.iter().map(|p| DVec2::new((*p - origin).dot(e1), (*p - origin).dot(e2))).collect();
-                Geom::Polygon { normal, origin, e1, e2, flat }
+                Geom::Polygon { normal, origin, vertices: v }
             }
             Shape::Cone { base, base_radius, apex, apex_radius } => {
                 let (base, apex) = (d3(*base), d3(*apex));
@@ -120,19 +108,22 @@ impl Geom {
                 let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { order(q / a, c / q) };
                 [t0, t1].into_iter().find(|&t| in_range(t))
             }
-            Geom::Triangle { v, n, .. } => {
-                let denom = n.dot(d);
-                if denom == 0.0 {
+            Geom::Triangle { v, .. } => {
+                let frame = RayFrame::new(o, d);
+                let [a, b, c] = v.map(|p| frame.point(p));
+                let (u, v, w) = (edge(b, c), edge(c, a), edge(a, b));
+                // Zero on an edge: every triangle sharing it is hit.
+                if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
                     return None;
                 }
-                let t = n.dot(v[0] - o) / denom;
-                if !in_range(t) {
+                let det = u + v + w;
+                if det == 0.0 {
                     return None;
                 }
-                let w = barycentric(v, *n, o + t * d);
-                (w.min_element() >= 0.0).then_some(t)
+                let t = (u * a.z + v * b.z + w * c.z) / det;
+                in_range(t).then_some(t)
             }
-            Geom::Polygon { normal, origin, e1, e2, flat } => {
+            Geom::Polygon { normal, origin, vertices } => {
                 let denom = normal.dot(d);
                 if denom == 0.0 {
                     return None;
@@ -141,8 +132,9 @@ impl Geom {
                 if !in_range(t) {
                     return None;
                 }
-                let p = o + t * d - *origin;
-                even_odd(flat, DVec2::new(p.dot(*e1), p.dot(*e2))).then_some(t)
+                let frame = RayFrame::new(o, d);
+                let sheared: Vec<DVec3> = vertices.iter().map(|p| frame.point(*p)).collect();
+                even_odd(&sheared).then_some(t)
             }
             Geom::Cone { base, axis, h, r0, k } => {
                 // |q⊥|² = (r0 + k s)², q = o + t d − B, s = q·a.
@@ -226,19 +218,113 @@ fn barycentric(v: &[DVec3; 3], n: DVec3, p: DVec3) -> DVec3 {
     DVec3::new(w0, w1, w2)
 }
 
-/// Even-odd rule: count crossings of the half-line from `q` towards +x.
-fn even_odd(poly: &[DVec2], q: DVec2) -> bool {
+/// The ray's frame (Woop, Benthin & Wald 2013): points sheared so that the ray
+/// runs along +z through the origin. Which side of an edge the ray passes is
+/// then the sign of [`edge`] of two sheared vertices, which a neighbour sharing
+/// the edge computes from the same numbers with the opposite sign: no ray
+/// passes between two primitives.
+struct RayFrame {
+    origin: DVec3,
+    /// Axes x, y, z of the frame; z is the direction's largest component.
+    axes: [usize; 3],
+    /// x − Sx·z, y − Sy·z cancel the ray's slope; Sz·z is the distance t.
+    shear: DVec3,
+}
+
+impl RayFrame {
+    fn new(origin: DVec3, d: DVec3) -> Self {
+        let a = d.abs();
+        let kz = if a.x > a.y && a.x > a.z { 0 } else if a.y > a.z { 1 } else { 2 };
+        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        // Swapping for a ray down its axis keeps every winding's sign.
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        Self { origin, axes: [kx, ky, kz], shear: DVec3::new(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]) }
+    }
+
+    fn point(&self, p: DVec3) -> DVec3 {
+        let q = p - self.origin;
+        let [kx, ky, kz] = self.axes;
+        DVec3::new(q[kx] - self.shear.x * q[kz], q[ky] - self.shear.y * q[kz], self.shear.z * q[kz])
+    }
+}
+
+/// Twice the signed area of (origin, a, b) in the frame's xy plane; exactly −edge(b, a).
+fn edge(a: DVec3, b: DVec3) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Even-odd rule in the ray's frame: the ray (the origin) is inside when an odd
+/// number of edges cross the +x half-line from it. A vertex on that line counts
+/// as above it and an edge through the origin as to its right, one tie rule for
+/// every polygon, so a ray on a shared edge is inside exactly one of them.
+fn even_odd(vertices: &[DVec3]) -> bool {
     let mut inside = false;
-    let mut j = poly.len() - 1;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[j], poly[i]);
-        if (a.y > q.y) != (b.y > q.y) {
-            let x = a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y);
-            if x > q.x {
+    let mut prev = vertices[vertices.len() - 1];
+    for &cur in vertices {
+        let rising = cur.y >= 0.0;
+        if (prev.y >= 0.0) != rising {
+            let e = edge(prev, cur);
+            if e == 0.0 || (e > 0.0) == rising {
                 inside = !inside;
             }
         }
-        j = i;
+        prev = cur;
     }
     inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// Seven faces around a shared centre on a shallow cone, all seen from
+    /// their front by the eyes used below.
+    fn fan(as_polygons: bool) -> (Vec<DVec3>, Vec<Geom>) {
+        let centre = Vec3::new(0.1, -0.2, 0.7);
+        let ring: Vec<Vec3> = (0..7)
+            .map(|k| {
+                let a = k as f32 * std::f32::consts::TAU / 7.0 + 0.3;
+                Vec3::new(a.cos(), a.sin(), 0.2 * (k % 3) as f32)
+            })
+            .collect();
+        let faces = (0..7)
+            .map(|k| {
+                let vertices = [centre, ring[k], ring[(k + 1) % 7]];
+                let shape = if as_polygons {
+                    Shape::Polygon { vertices: vertices.to_vec() }
+                } else {
+                    Shape::Triangle { vertices, normals: None }
+                };
+                Geom::new(&shape)
+            })
+            .collect();
+        let mut points = vec![centre.as_dvec3()];
+        points.extend(ring.iter().map(|v| v.as_dvec3()));
+        (points, faces)
+    }
+
+    #[test]
+    fn rays_through_shared_edges_and_vertices_hit_and_polygons_count_once() {
+        for as_polygons in [false, true] {
+            let (points, faces) = fan(as_polygons);
+            let centre = points[0];
+            let mut targets = vec![centre];
+            for (k, spoke) in points[1..].iter().enumerate() {
+                targets.extend((1..40).map(|i| centre + (*spoke - centre) * (f64::from(i) / 40.0 + k as f64 * 1e-3)));
+            }
+            for (i, target) in targets.iter().enumerate() {
+                for eye in [DVec3::new(0.3, 0.2, 6.0), DVec3::new(-1.1, 0.7, 4.0), DVec3::new(0.9, -1.3, 5.0)] {
+                    let d = (*target - eye).normalize();
+                    let hits = faces.iter().filter(|f| f.intersect(eye, d, 0.0, f64::INFINITY).is_some()).count();
+                    assert!(hits >= 1, "polygons {as_polygons}, target {i}: the ray slipped through");
+                    if as_polygons && i > 0 {
+                        assert_eq!(hits, 1, "target {i}: a ray on a shared edge is inside exactly one polygon");
+                    }
+                }
+            }
+        }
+    }
 }

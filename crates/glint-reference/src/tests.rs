@@ -641,7 +641,7 @@ fn shape_points(s: &Shape) -> Vec<DVec3> {
         Shape::Polygon { vertices } => vertices.iter().map(|v| dv(*v)).collect(),
         Shape::Cone { base, base_radius, apex, apex_radius } => {
             let axis = (dv(*apex) - dv(*base)).normalize();
-            let e1 = crate::geometry::perpendicular(axis);
+            let e1 = perpendicular(axis);
             let e2 = axis.cross(e1);
             (0..64)
                 .flat_map(|k| {
@@ -671,4 +671,10 @@ fn random_scenes_render_finite_and_mostly_stable() {
         let p = t.pixel(s.width, s.height, i, j);
         assert_eq!(p.rgb, img.rgb[img.index(i, j)]);
     }
+}
+
+/// Some unit vector perpendicular to unit `n`.
+fn perpendicular(n: DVec3) -> DVec3 {
+    let a = if n.x.abs() < 0.6 { DVec3::X } else if n.y.abs() < 0.6 { DVec3::Y } else { DVec3::Z };
+    (a - n * a.dot(n)).normalize()
 }

@@ -1,0 +1,57 @@
+// The ray's own frame for watertight edge tests (Woop, Benthin & Wald,
+// "Watertight Ray/Triangle Intersection", JCGT 2013). Vertices are sheared so
+// that the ray runs along +z through the origin; which side of an edge the ray
+// passes becomes the sign of a 2D cross product of two sheared vertices. Two
+// primitives sharing an edge compute that product from the same numbers, once
+// with each sign, so no ray slips between them.
+
+struct RayFrame {
+    origin: vec3<f32>,
+    // kx, ky, kz: the axis along which the direction is largest is z.
+    axes: vec3<u32>,
+    // Sx, Sy, Sz: x − Sx·z and y − Sy·z cancel the ray's slope, Sz·z is t.
+    shear: vec3<f32>,
+}
+
+fn ray_frame(ray: Ray) -> RayFrame {
+    let a = abs(ray.dir);
+    var kz = 2u;
+    if a.x > a.y && a.x > a.z {
+        kz = 0u;
+    } else if a.y > a.z {
+        kz = 1u;
+    }
+    var kx = (kz + 1u) % 3u;
+    var ky = (kx + 1u) % 3u;
+    // Swapping x and y for a ray down the axis keeps every winding's sign.
+    if ray.dir[kz] < 0.0 {
+        let k = kx;
+        kx = ky;
+        ky = k;
+    }
+    let dz = ray.dir[kz];
+    return RayFrame(ray.origin, vec3<u32>(kx, ky, kz), vec3<f32>(ray.dir[kx] / dz, ray.dir[ky] / dz, 1.0 / dz));
+}
+
+// `p` in the frame: x and y across the ray, z the distance along it.
+fn to_frame(f: RayFrame, p: vec3<f32>) -> vec3<f32> {
+    let q = p - f.origin;
+    let qz = q[f.axes.z];
+    return vec3<f32>(q[f.axes.x] - f.shear.x * qz, q[f.axes.y] - f.shear.y * qz, f.shear.z * qz);
+}
+
+// Twice the signed area of (origin, a, b) in the frame's xy plane: positive
+// when the ray passes to the left of a→b.
+fn edge(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return a.x * b.y - a.y * b.x;
+}
+
+// The sign of edge(a, b) (1, −1 or 0 when the ray meets the edge), exactly
+// −edge_sign(b, a). It compares the two products instead of subtracting them:
+// a compiler may fuse a·b − c·d into one multiply-add, which rounds the two
+// orders differently and would let a ray through a shared edge.
+fn edge_sign(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    let left = a.x * b.y;
+    let right = a.y * b.x;
+    return select(select(-1.0, 1.0, left > right), 0.0, left == right);
+}
