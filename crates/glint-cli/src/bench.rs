@@ -169,3 +169,21 @@ fn print(m: &Measurement, args: &BenchArgs) {
         );
     }
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_default_scenes_are_generated_or_in_the_repository() {
+        let scenes = super::default_scenes();
+        for name in glint_scene::spd::CLASSIC {
+            assert!(scenes.iter().any(|s| s.to_str() == Some(&format!("spd:{name}"))), "{name} is not benchmarked");
+        }
+        for scene in &scenes {
+            let text = scene.to_str().unwrap();
+            assert!(text.starts_with("spd:") || scene.starts_with("scenes/bench"), "{text} is outside the repository");
+            if let Some(spec) = glint_scene::spd::spec_of(scene) {
+                glint_scene::spd::check(spec).unwrap();
+            }
+        }
+    }
+}
