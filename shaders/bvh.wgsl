@@ -1,8 +1,6 @@
 // BVH traversal with a private stack, nearest child first. The host builder
 // guarantees the tree depth fits BVH_STACK.
 
-const BVH_STACK: u32 = 32u;
-
 // A lane whose ray missed both children waits for the leaf phase to pop, so the
 // descent loop only descends (its body stays small and lanes stay in step).
 const NEEDS_POP: u32 = 0xfffffffeu;

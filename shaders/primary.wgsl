@@ -22,7 +22,9 @@ fn primary_view(eye: Ray) -> vec3<f32> {
         case VIEW_NORMAL: { return surface_at(p, eye, hit.t).geometric; }
         case VIEW_DEPTH: { return vec3<f32>(hit.t); }
         case VIEW_ALBEDO: { return m.color; }
-        case VIEW_ID: { return vec3<f32>(f32(p.object)); }
+        // x for display and AOVs (exact up to 2^24), y the index's own bits,
+        // which picking reads: exact for any number of objects.
+        case VIEW_ID: { return vec3<f32>(f32(p.object), bitcast<f32>(p.object), 0.0); }
         default: { return diffuse_only(surface_at(p, eye, hit.t), m); }
     }
 }

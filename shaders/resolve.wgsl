@@ -7,7 +7,7 @@
 
 struct ResolveParams {
     pixel_count: u32,
-    tone_map: u32, // 0 clamp, 1 Reinhard, 2 ACES filmic
+    tone_map: u32, // TONE_CLAMP, TONE_REINHARD or TONE_ACES (filmic)
     exposure: f32,
     view: u32,
     scale: f32,
@@ -15,16 +15,6 @@ struct ResolveParams {
     _pad1: u32,
     _pad2: u32,
 }
-
-const TONE_CLAMP: u32 = 0u;
-const TONE_REINHARD: u32 = 1u;
-const TONE_ACES: u32 = 2u;
-
-// Must match VIEW_ in types.wgsl (which this kernel does not include).
-const VIEW_NORMAL: u32 = 1u;
-const VIEW_DEPTH: u32 = 2u;
-const VIEW_ID: u32 = 5u;
-const VIEW_HEATMAP: u32 = 6u;
 
 @group(0) @binding(0) var<uniform> params: ResolveParams;
 @group(0) @binding(1) var<storage, read> samples: array<vec4<f32>>;

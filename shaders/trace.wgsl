@@ -3,8 +3,6 @@
 // weight its colour contributes to the pixel. The band and ray-count helpers
 // here serve the primary kernel too.
 
-const RAY_STACK: u32 = 17u; // MAX_DEPTH_LIMIT + 1: each level leaves one sibling pending
-
 var<private> local_stats: array<u32, STAT_COUNT>;
 
 fn count_ray(kind: u32) {

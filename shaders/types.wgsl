@@ -1,54 +1,7 @@
 // Structs shared by the kernels. Each has a Rust twin of the same name in
 // crates/glint-scene/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
-// that sizes and member offsets agree.
-
-const PROJECTION_PERSPECTIVE: u32 = 0u;
-const PROJECTION_ORTHOGRAPHIC: u32 = 1u;
-
-const PRIM_SPHERE: u32 = 0u;
-const PRIM_TRIANGLE: u32 = 1u;
-const PRIM_POLYGON: u32 = 2u;
-const PRIM_CONE: u32 = 3u;
-
-const LIGHT_POINT: u32 = 0u;
-const LIGHT_DIRECTIONAL: u32 = 1u;
-
-const ATTENUATION_NONE: u32 = 0u;
-const ATTENUATION_INVERSE_SQUARE: u32 = 1u;
-const ATTENUATION_POLYNOMIAL: u32 = 2u;
-
-const MATERIAL_BLINN: u32 = 1u;
-const MATERIAL_METALLIC: u32 = 2u;
-const MATERIAL_FRESNEL: u32 = 4u;
-
-const FLAG_SHADOWS: u32 = 1u;
-const FLAG_TINTED_SHADOWS: u32 = 2u;
-const FLAG_REFLECTIONS: u32 = 4u;
-const FLAG_REFRACTIONS: u32 = 8u;
-const FLAG_DEPTH_CUE: u32 = 16u;
-
-// What the trace kernel writes per pixel (the `view` of Globals).
-const VIEW_SHADED: u32 = 0u;
-const VIEW_NORMAL: u32 = 1u;   // unit geometric normal, turned towards the viewer; 0 on a miss
-const VIEW_DEPTH: u32 = 2u;    // distance along the unit primary ray; MISS on a miss
-const VIEW_ALBEDO: u32 = 3u;   // O_d of the material hit; 0 on a miss
-const VIEW_DIFFUSE: u32 = 4u;  // direct diffuse light only (see shade.wgsl)
-const VIEW_ID: u32 = 5u;       // object index; −1 on a miss
-const VIEW_HEATMAP: u32 = 6u;  // BVH nodes visited by the primary ray
-
-const FILTER_BOX: u32 = 0u;
-const FILTER_TENT: u32 = 1u;
-
-// Indices into the ray statistics counters.
-const STAT_EYE_HIT: u32 = 0u;
-const STAT_EYE_MISS: u32 = 1u;
-const STAT_SHADOW: u32 = 2u;
-const STAT_REFLECT: u32 = 3u;
-const STAT_REFRACT: u32 = 4u;
-const STAT_COUNT: u32 = 5u;
-
-// A ray that misses has t = MISS.
-const MISS: f32 = 3.4e38;
+// that sizes and member offsets agree. The constants they use (PRIM_, VIEW_,
+// FLAG_, MISS, LEAF …) come from the generated prelude (gpu_types::wgsl_prelude).
 
 struct GpuCamera {
     eye: vec3<f32>,
@@ -139,12 +92,6 @@ struct GpuGrid {
     origin: vec3<f32>,
     exponents: u32,
 }
-
-// Set in a reference to a leaf record; in `children`, the first child is a leaf.
-const LEAF: u32 = 0x80000000u;
-const RIGHT_LEAF: u32 = 0x40000000u;
-// The end of a traversal.
-const NO_NODE: u32 = 0xffffffffu;
 
 struct Ray {
     origin: vec3<f32>,

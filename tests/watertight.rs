@@ -6,7 +6,7 @@ mod support;
 
 use glam::Vec3;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::{View, MISS_DEPTH};
+use glint_scene::gpu_types::{View, MISS};
 use glint_scene::{Camera, Material, Object, Projection, RenderSettings, Scene, Shape};
 
 /// A scene of `shapes`, one object each, seen by `camera` at 512 × 512.
@@ -31,7 +31,7 @@ fn misses(scene: &Scene) -> Vec<(u32, u32)> {
     let options = RenderOptions { view: View::Depth, ..RenderOptions::default() };
     let (depth, _) = support::render_options(scene, Acceleration::Bvh, options);
     let width = depth.width as usize;
-    depth.linear.iter().enumerate().filter(|(_, p)| p[0] >= MISS_DEPTH).map(|(i, _)| ((i % width) as u32, (i / width) as u32)).collect()
+    depth.linear.iter().enumerate().filter(|(_, p)| p[0] >= MISS).map(|(i, _)| ((i % width) as u32, (i / width) as u32)).collect()
 }
 
 /// A small deterministic generator (SplitMix64), so failures reproduce.

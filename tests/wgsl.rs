@@ -5,7 +5,7 @@ use std::mem::{offset_of, size_of};
 
 use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
-use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals};
+use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals, ResolveParams};
 
 fn trace_module() -> naga::Module {
     ShaderSource::Embedded.compose(TRACE_FILES).unwrap().validate().unwrap()
@@ -95,4 +95,44 @@ fn host_structs_match_wgsl() {
     layout!(m, GpuPrim { a, b, c, kind_material, object, first, count });
     layout!(m, GpuNode { quantized, children });
     layout!(m, GpuGrid { origin, exponents });
+    for files in [RESOLVE_FILES, PRESENT_FILES] {
+        let m = ShaderSource::Embedded.compose(files).unwrap().validate().unwrap();
+        layout!(m, ResolveParams { pixel_count, tone_map, exposure, view, scale, _pad0, _pad1, _pad2 });
+    }
+}
+
+/// The constants host and kernels share reach every kernel from Rust, with
+/// Rust's values; no shader file declares one of them again.
+#[test]
+fn shared_constants_come_from_the_host() {
+    use glint_scene::gpu_types as g;
+    let module = trace_module();
+    let value = |name: &str| {
+        let (_, c) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).unwrap_or_else(|| panic!("no WGSL constant {name}"));
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
+            naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
+            ref e => panic!("{name} = {e:?}"),
+        }
+    };
+    for (name, host) in [
+        ("PRIM_POLYGON", f64::from(g::PRIM_POLYGON)),
+        ("VIEW_HEATMAP", f64::from(g::VIEW_HEATMAP)),
+        ("RAY_STACK", f64::from(glint_scene::scene::MAX_DEPTH_LIMIT + 1)),
+        ("BVH_STACK", glint_scene::bvh::MAX_DEPTH as f64),
+        ("LEAF", f64::from(g::LEAF)),
+        ("MISS", f64::from(g::MISS)),
+        ("STAT_COUNT", f64::from(g::STAT_COUNT)),
+    ] {
+        assert_eq!(value(name), host, "{name}");
+    }
+    let prelude = g::wgsl_prelude();
+    let shared: Vec<&str> = prelude.lines().filter_map(|l| l.strip_prefix("const ")?.split(':').next()).collect();
+    for entry in std::fs::read_dir(ShaderSource::source_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        for name in &shared {
+            assert!(!text.contains(&format!("const {name}:")), "{} declares the shared constant {name} again", path.display());
+        }
+    }
 }

@@ -60,6 +60,7 @@ impl From<glint_gpu::GpuError> for Failure {
     fn from(e: glint_gpu::GpuError) -> Self {
         let code = match e {
             glint_gpu::GpuError::Output(_) => exit::OUTPUT,
+            glint_gpu::GpuError::Invalid(_) => exit::INPUT,
             _ => exit::GPU,
         };
         Failure::new(code, e)

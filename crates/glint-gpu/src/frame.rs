@@ -1,5 +1,5 @@
 //! The host pipeline from a loaded scene to uploaded buffers:
-//! build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
+//! validate → build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
 
 use std::time::{Duration, Instant};
 
@@ -45,6 +45,7 @@ impl Renderer {
     /// Builds the acceleration structure, packs and uploads `scene` for an image
     /// of `width` × `height`.
     pub fn prepare(&self, scene: &Scene, width: u32, height: u32, acceleration: Acceleration) -> Result<Prepared, GpuError> {
+        scene.validate()?;
         let bounds = gpu_types::primitive_bounds(scene);
         // The build includes laying the tree out for the kernel.
         let start = Instant::now();
@@ -52,7 +53,7 @@ impl Renderer {
             Acceleration::Bvh => Bvh::build(&bounds),
             Acceleration::BruteForce => Bvh::single_leaf(&bounds),
         };
-        let gpu_bvh = bvh.gpu();
+        let gpu_bvh = bvh.gpu()?;
         let bvh_build = start.elapsed();
         let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
         let globals = gpu_types::globals(scene, width, height, packed.light_count);

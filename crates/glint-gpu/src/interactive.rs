@@ -6,9 +6,9 @@
 use std::ops::Range;
 use std::sync::{Arc, Mutex};
 
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 use glam::Vec3;
-use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, View, PROJECTION_ORTHOGRAPHIC};
+use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, ResolveParams, View, PROJECTION_ORTHOGRAPHIC};
 
 use crate::renderer::{create_pipelines, STAT_BYTES};
 use crate::shaders::{ShaderSource, PRESENT_FILES};
@@ -17,17 +17,6 @@ use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
 /// Bytes of one accumulation pixel (rgb sum and sample count).
 const PIXEL_BYTES: u64 = 16;
 
-/// The uniforms of resolve.wgsl's `ResolveParams`, which the present kernel shares.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, Pod, Zeroable)]
-struct PresentParams {
-    pixel_count: u32,
-    tone_map: u32,
-    exposure: f32,
-    view: u32,
-    scale: f32,
-    _pad: [u32; 3],
-}
 
 /// The present kernel: resolve.wgsl's display mapping, written into a texture.
 pub struct PresentPipeline {
@@ -114,7 +103,7 @@ impl Renderer {
         let view = texture.create_view(&Default::default());
         let params = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("present params"),
-            size: std::mem::size_of::<PresentParams>() as u64,
+            size: std::mem::size_of::<ResolveParams>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -134,13 +123,13 @@ impl Renderer {
     /// (tone map, exposure, view, view scale of `options`), without reading back.
     pub fn present(&self, pipeline: &PresentPipeline, target: &PresentTarget, options: &RenderOptions) {
         let (width, height) = (target.texture.width(), target.texture.height());
-        let params = PresentParams {
+        let params = ResolveParams {
             pixel_count: width * height,
             tone_map: options.tone_map as u32,
             exposure: options.exposure,
             view: options.view as u32,
             scale: options.view_scale,
-            _pad: [0; 3],
+            ..Zeroable::zeroed()
         };
         self.queue.write_buffer(&target.params, 0, bytemuck::bytes_of(&params));
         let mut encoder = self.device.create_command_encoder(&Default::default());
@@ -270,8 +259,8 @@ impl Renderer {
             return Err(GpuError::Runtime(e.to_string()));
         }
         let pixel: [f32; 4] = bytemuck::pod_read_unaligned(&bytes?);
-        // The id view writes the object index, or −1 on a miss.
-        Ok((pixel[0] >= 0.0).then_some(pixel[0] as u32))
+        // The id view writes −1 on a miss, else the object index's bits in y.
+        Ok((pixel[0] >= 0.0).then_some(pixel[1].to_bits()))
     }
 
     pub fn ray_counter(&self) -> RayCounter {
@@ -307,25 +296,10 @@ impl RayCounter {
         }
         let mut stats = RayStats::default();
         match self.buffer.get_mapped_range(..) {
-            Ok(bytes) => stats.add_slots(bytemuck::cast_slice(&bytes)),
+            Ok(bytes) => stats.add_slots(&bytemuck::pod_collect_to_vec(&bytes)),
             Err(e) => return Some(Err(GpuError::Runtime(e.to_string()))),
         }
         self.buffer.unmap();
         Some(Ok(stats))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The host's copy of ResolveParams has the WGSL struct's size.
-    #[test]
-    fn present_params_match_wgsl() {
-        let module = ShaderSource::Embedded.compose(PRESENT_FILES).unwrap().validate().unwrap();
-        let (handle, _) = module.types.iter().find(|(_, t)| t.name.as_deref() == Some("ResolveParams")).unwrap();
-        let mut layouter = naga::proc::Layouter::default();
-        layouter.update(module.to_ctx()).unwrap();
-        assert_eq!(layouter[handle].size as usize, std::mem::size_of::<PresentParams>());
     }
 }

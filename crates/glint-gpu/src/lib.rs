@@ -29,4 +29,6 @@ pub enum GpuError {
     Runtime(String),
     #[error("{0}")]
     Output(String),
+    #[error("the scene cannot be rendered: {0}")]
+    Invalid(#[from] glint_scene::validate::Invalid),
 }

@@ -1,11 +1,14 @@
 //! The render pipeline on the device: upload → dispatch tiles → resolve → read back.
 
-use bytemuck::{Pod, Zeroable};
+use bytemuck::Zeroable;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use glint_scene::gpu_types::{Filter, Globals, GpuScene, View};
+use glint_scene::gpu_types::{
+    Filter, Globals, GpuScene, ResolveParams, View, STAT_COUNT, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
+    STAT_REFRACT, STAT_SHADOW, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
+};
 use wgpu::util::DeviceExt;
 
 use crate::shaders::{ShaderSource, RESOLVE_FILES, TRACE_FILES};
@@ -17,11 +20,12 @@ const DISPATCH_TARGET: Duration = Duration::from_millis(150);
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[repr(u32)]
 pub enum ToneMap {
     #[default]
-    Clamp = 0,
-    Reinhard = 1,
-    Aces = 2,
+    Clamp = TONE_CLAMP,
+    Reinhard = TONE_REINHARD,
+    Aces = TONE_ACES,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,11 +77,12 @@ impl RayStats {
     /// Adds the counters of every slot of a stats buffer read back.
     pub(crate) fn add_slots(&mut self, counts: &[u32]) {
         for slot in counts.chunks_exact(STAT_COUNT as usize) {
-            self.eye_hit += u64::from(slot[0]);
-            self.eye_miss += u64::from(slot[1]);
-            self.shadow += u64::from(slot[2]);
-            self.reflect += u64::from(slot[3]);
-            self.refract += u64::from(slot[4]);
+            let count = |kind: u32| u64::from(slot[kind as usize]);
+            self.eye_hit += count(STAT_EYE_HIT);
+            self.eye_miss += count(STAT_EYE_MISS);
+            self.shadow += count(STAT_SHADOW);
+            self.reflect += count(STAT_REFLECT);
+            self.refract += count(STAT_REFRACT);
         }
     }
 }
@@ -95,22 +100,10 @@ impl std::ops::Add for RayStats {
     }
 }
 
-const STAT_COUNT: u64 = 5;
 /// Slots of ray counters in the stats buffer (one per workgroup, modulo this).
 const STAT_SLOTS: u64 = 1024;
 /// Size of the stats buffer.
-pub(crate) const STAT_BYTES: u64 = STAT_SLOTS * STAT_COUNT * 4;
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, Pod, Zeroable)]
-struct ResolveParams {
-    pixel_count: u32,
-    tone_map: u32,
-    exposure: f32,
-    view: u32,
-    scale: f32,
-    _pad: [u32; 3],
-}
+pub(crate) const STAT_BYTES: u64 = STAT_SLOTS * STAT_COUNT as u64 * 4;
 
 /// The compiled kernels on one device. Cheap to clone the device and queue
 /// handles into it, so the viewer can share eframe's device.
@@ -315,7 +308,7 @@ impl Renderer {
             encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_BYTES);
             let start = Instant::now();
             self.queue.submit([encoder.finish()]);
-            let counts: Vec<u32> = bytemuck::cast_slice(&self.read(&stats_readback)?).to_vec();
+            let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&self.read(&stats_readback)?);
             stats.add_slots(&counts);
             y += band;
             progress(u64::from(y));
@@ -365,7 +358,7 @@ impl Renderer {
             exposure: options.exposure,
             view: options.view as u32,
             scale: options.view_scale,
-            _pad: [0; 3],
+            ..Zeroable::zeroed()
         };
         let params_buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("resolve params"),
@@ -399,8 +392,8 @@ impl Renderer {
         encoder.copy_buffer_to_buffer(&display, 0, &display_readback, 0, bytes);
         encoder.copy_buffer_to_buffer(&scene.accum, 0, &accum_readback, 0, bytes);
         self.queue.submit([encoder.finish()]);
-        let display: Vec<[f32; 4]> = bytemuck::cast_slice(&self.read(&display_readback)?).to_vec();
-        let accum: Vec<[f32; 4]> = bytemuck::cast_slice(&self.read(&accum_readback)?).to_vec();
+        let display: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&self.read(&display_readback)?);
+        let accum: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&self.read(&accum_readback)?);
         // Radiance is scaled by the exposure; data views keep their values.
         let exposure = if options.view.is_primary_only() { 1.0 } else { options.exposure };
         let linear = accum

@@ -1,7 +1,8 @@
-//! WGSL composition. Each kernel is an ordered concatenation of the one-concept
-//! files in `shaders/`; WGSL allows module-scope declarations in any order, so
-//! the order only makes errors easier to read. Errors are mapped back to the
-//! file and line they came from.
+//! WGSL composition. Each kernel is the generated prelude of constants shared
+//! with the host (`gpu_types::wgsl_prelude`) followed by an ordered
+//! concatenation of the one-concept files in `shaders/`; WGSL allows
+//! module-scope declarations in any order, so the order only makes errors
+//! easier to read. Errors are mapped back to the file and line they came from.
 //!
 //! The files are embedded at build time; `ShaderSource::from_dir` reads them from
 //! disk instead (the viewer's hot reload).
@@ -62,10 +63,14 @@ pub struct Composed {
     pub files: Vec<(&'static str, usize)>,
 }
 
+/// How errors name the generated prelude.
+const PRELUDE: &str = "the generated prelude (gpu_types.rs)";
+
 impl Composed {
     /// Turns a line of the composed source into "file:line".
     pub fn locate(&self, line: usize) -> String {
         match self.files.iter().rev().find(|(_, start)| *start <= line) {
+            Some((name, start)) if *name == PRELUDE => format!("{name}, line {}", line - start + 1),
             Some((name, start)) => format!("shaders/{name}:{}", line - start + 1),
             None => format!("line {line}"),
         }
@@ -110,8 +115,8 @@ impl ShaderSource {
     }
 
     pub fn compose(&self, files: &[&'static str]) -> Result<Composed, GpuError> {
-        let mut source = String::new();
-        let mut starts = Vec::new();
+        let mut source = glint_scene::gpu_types::wgsl_prelude();
+        let mut starts = vec![(PRELUDE, 1)];
         for name in files {
             starts.push((*name, source.lines().count() + 1));
             source.push_str(&self.read(name)?);

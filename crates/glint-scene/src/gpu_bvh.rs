@@ -24,13 +24,16 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 use crate::bvh::{Bvh, Node};
+use crate::gpu_types::{LEAF, RIGHT_LEAF};
+use crate::validate::Invalid;
 
-/// Set in a reference to a leaf record (on the kernel's stack and in
-/// [`GpuBvh::root`]); in an interior record's `children`, this bit marks the
-/// first child as a leaf and [`RIGHT_LEAF`] the second.
-pub const LEAF: u32 = 1 << 31;
-pub const RIGHT_LEAF: u32 = 1 << 30;
+/// The bits of a child reference that index a record. [`LEAF`] marks a
+/// reference to a leaf (on the kernel's stack and in [`GpuBvh::root`]); in an
+/// interior record's `children` it marks the first child as a leaf and
+/// [`RIGHT_LEAF`] the second.
 const INDEX: u32 = RIGHT_LEAF - 1;
+/// The most records a tree can have: every child index must fit [`INDEX`].
+pub const MAX_NODES: usize = INDEX as usize + 1;
 /// The finest cell: 2^-100 (biased exponent 27), far above the subnormals a GPU
 /// may flush to zero, so host and kernel derive the same grids.
 const MIN_EXPONENT: u32 = 27;
@@ -119,8 +122,10 @@ fn cell_exponent(extent: f32) -> u32 {
 }
 
 impl Bvh {
-    /// The tree in the kernel's layout (see the module documentation).
-    pub fn gpu(&self) -> GpuBvh {
+    /// The tree in the kernel's layout (see the module documentation), once it
+    /// is known to fit it.
+    pub fn gpu(&self) -> Result<GpuBvh, Invalid> {
+        self.validate()?;
         let mut out = GpuBvh {
             nodes: vec![GpuNode::zeroed(); self.nodes.len()],
             grids: vec![GpuGrid::zeroed(); self.nodes.len()],
@@ -136,7 +141,7 @@ impl Bvh {
         } else {
             self.place(0, GpuGrid::over(root.min.into(), root.max.into()), &mut out);
         }
-        out
+        Ok(out)
     }
 
     /// Writes interior node `i` over `grid` and, depth first, its subtree.
@@ -159,7 +164,6 @@ impl Bvh {
                 self.place(index, GpuGrid::over(lo, hi), out);
             }
         }
-        assert!(first <= INDEX, "too many BVH nodes for a child index: {first}");
         out.nodes[i] = record;
     }
 }
@@ -174,9 +178,8 @@ mod tests {
     use crate::bvh::MAX_DEPTH;
     use crate::test_rng::Rng;
 
-    /// The end of a traversal and a ray that missed both children, as NO_NODE
-    /// and NEEDS_POP in the kernel.
-    const NO_NODE: u32 = u32::MAX;
+    use crate::gpu_types::NO_NODE;
+    /// A ray that missed both children, as NEEDS_POP in the kernel.
     const NEEDS_POP: u32 = u32::MAX - 1;
 
     fn sphere_bounds(spheres: &[(Vec3, f32)]) -> Vec<(Vec3, Vec3)> {
@@ -214,7 +217,7 @@ mod tests {
     /// decoded box: that grid is the one stored for it, every primitive is in
     /// exactly one leaf, and every decoded box contains its primitives.
     fn check(bvh: &Bvh, bounds: &[(Vec3, Vec3)]) {
-        let gpu = bvh.gpu();
+        let gpu = bvh.gpu().unwrap();
         let mut seen = vec![0u32; bounds.len()];
         let mut stack = vec![(gpu.root, gpu.grids[0], None)];
         while let Some((reference, grid, decoded)) = stack.pop() {
@@ -268,7 +271,7 @@ mod tests {
         let mut rng = Rng(2);
         let bounds = sphere_bounds(&random_spheres(&mut rng, 1000, 10.0));
         let bvh = Bvh::build(&bounds);
-        let gpu = bvh.gpu();
+        let gpu = bvh.gpu().unwrap();
         let mut stack = vec![(0u32, gpu.grids[0])];
         while let Some((i, grid)) = stack.pop() {
             let first = bvh.nodes[i as usize].left_or_first as usize;
@@ -301,18 +304,18 @@ mod tests {
     #[test]
     fn a_lone_leaf_is_the_root() {
         let bounds = vec![(Vec3::ZERO, Vec3::ONE); 3];
-        let gpu = Bvh::build(&bounds).gpu();
+        let gpu = Bvh::build(&bounds).gpu().unwrap();
         assert_eq!(gpu.root, LEAF);
         assert_eq!(leaf_range(&gpu, gpu.root), 0..3);
         // The brute-force tree: one leaf however many primitives.
         let many = vec![(Vec3::ZERO, Vec3::ONE); 1000];
-        let gpu = Bvh::single_leaf(&many).gpu();
+        let gpu = Bvh::single_leaf(&many).gpu().unwrap();
         assert_eq!(leaf_range(&gpu, gpu.root), 0..1000);
     }
 
     #[test]
     fn an_empty_scene_has_an_empty_leaf() {
-        let gpu = Bvh::build(&[]).gpu();
+        let gpu = Bvh::build(&[]).gpu().unwrap();
         assert_eq!(gpu.root, LEAF);
         assert_eq!(leaf_range(&gpu, gpu.root), 0..0);
     }
@@ -326,7 +329,7 @@ mod tests {
             (Vec3::ZERO, Vec3::ONE),
             (Vec3::ZERO, Vec3::ONE),
         ];
-        Bvh::build(&bounds).gpu();
+        Bvh::build(&bounds).gpu().unwrap();
     }
 
     /// Nearest positive root of |o + t·d − c|² = r² for unit `d`.
@@ -358,7 +361,7 @@ mod tests {
     /// node it returns to; equal distances go to the lower primitive. Returns
     /// (t, input primitive index) and the most stack entries used.
     fn closest_hit(bvh: &Bvh, spheres: &[(Vec3, f32)], origin: Vec3, dir: Vec3) -> (Option<(f32, u32)>, usize) {
-        let gpu = bvh.gpu();
+        let gpu = bvh.gpu().unwrap();
         let inv_dir = dir.recip();
         let mut best: Option<(f32, u32)> = None;
         let t_max = |best: &Option<(f32, u32)>| best.map_or(f32::INFINITY, |b| b.0);

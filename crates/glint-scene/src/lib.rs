@@ -19,6 +19,7 @@ pub mod spd;
 mod test_rng;
 pub mod toml_scene;
 pub mod toml_write;
+pub mod validate;
 
 pub use camera::{Camera, Projection};
 pub use error::{LoadError, Location};

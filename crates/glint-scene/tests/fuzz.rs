@@ -35,7 +35,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
-use glint_scene::gpu_types::{globals, pack, primitive_bounds};
+use glint_scene::gpu_types::{globals, pack, primitive_bounds, GpuScene, BVH_STACK, LEAF, PRIM_POLYGON, PRIM_TRIANGLE, RIGHT_LEAF};
 use glint_scene::scene::MAX_DEPTH_LIMIT;
 use glint_scene::toml_scene::MAX_IMAGE_SIDE;
 use glint_scene::{Attenuation, LightKind, LoadError, Projection, Scene, Shape};
@@ -992,9 +992,14 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
             }
         }
     }
-    // The host half of rendering: none of it may panic on what a loader accepted.
+    // The host half of rendering: none of it may panic on what a loader
+    // accepted, and what it uploads keeps every index the kernels follow
+    // inside its array.
+    prop_assert!(scene.validate().is_ok(), "a loaded scene fails validation: {:?}", scene.validate());
     let bvh = Bvh::build(&primitive_bounds(scene));
-    let packed = pack(scene, &bvh.order, bvh.gpu());
+    let gpu_bvh = bvh.gpu().map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let packed = pack(scene, &bvh.order, gpu_bvh);
+    check_indices(&packed)?;
     let g = globals(scene, scene.width, scene.height, packed.light_count);
     let camera_values = [g.camera.u, g.camera.v, g.camera.w].concat();
     prop_assert!(
@@ -1183,4 +1188,41 @@ fn sane_files_mostly_load() {
         }
         assert!(errors.len() <= 20, "{name}: {} of 200 sane files fail to load, e.g. {:?}", errors.len(), &errors[..3.min(errors.len())]);
     }
+}
+
+/// Walks every BVH record reachable from the root, as any traversal might
+/// (the kernel's stack holds each level's far child: never deeper than
+/// `BVH_STACK`), and checks each index the kernels read: child records, leaf
+/// primitive ranges, materials, polygon vertices and vertex normals.
+fn check_indices(scene: &GpuScene) -> Result<(), TestCaseError> {
+    let mut pending = vec![(scene.bvh_root, 0usize)];
+    while let Some((reference, depth)) = pending.pop() {
+        prop_assert!(depth <= BVH_STACK as usize, "a path {depth} deep overflows the traversal stack");
+        let record = (reference & !LEAF) as usize;
+        prop_assert!(record < scene.nodes.len(), "record {record} of {}", scene.nodes.len());
+        let node = scene.nodes[record];
+        if reference & LEAF != 0 {
+            let (first, count) = (node.quantized[0] as usize, node.quantized[1] as usize);
+            prop_assert!(first + count <= scene.prims.len(), "leaf {first}+{count} of {} primitives", scene.prims.len());
+            for p in &scene.prims[first..first + count] {
+                let (kind, material) = (p.kind_material & 0xff, (p.kind_material >> 8) as usize);
+                prop_assert!(material < scene.materials.len(), "material {material} of {}", scene.materials.len());
+                let points = p.first as usize + p.count as usize;
+                if kind == PRIM_POLYGON {
+                    prop_assert!(p.count >= 3 && points <= scene.points.len(), "polygon {}+{} of {} points", p.first, p.count, scene.points.len());
+                }
+                if kind == PRIM_TRIANGLE && p.count == 3 {
+                    prop_assert!(points <= scene.points.len(), "normals {}+3 of {} points", p.first, scene.points.len());
+                }
+            }
+        } else {
+            let first = node.children & !(LEAF | RIGHT_LEAF);
+            for (child, leaf_flag) in [(first, LEAF), (first + 1, RIGHT_LEAF)] {
+                let is_leaf = node.children & leaf_flag != 0;
+                pending.push((child | if is_leaf { LEAF } else { 0 }, depth + 1));
+            }
+        }
+    }
+    prop_assert!(!scene.materials.is_empty() && !scene.lights.is_empty() && !scene.points.is_empty(), "an empty binding");
+    Ok(())
 }
