@@ -3,47 +3,113 @@
 
 use std::mem::{offset_of, size_of};
 
-use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
+use std::collections::{BTreeMap, BTreeSet};
+
+use glint_gpu::shaders::{imports, Kernel, ShaderSource, SOURCES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals, ResolveParams};
 
+fn module(kernel: Kernel) -> naga::Module {
+    ShaderSource::Embedded.compose(kernel).unwrap().validate().unwrap()
+}
+
 fn trace_module() -> naga::Module {
-    ShaderSource::Embedded.compose(TRACE_FILES).unwrap().validate().unwrap()
+    module(Kernel::Trace)
 }
 
 #[test]
 fn every_kernel_validates() {
-    for files in [TRACE_FILES, RESOLVE_FILES, PRESENT_FILES] {
-        let composed = ShaderSource::Embedded.compose(files).unwrap();
-        if let Err(e) = composed.validate() {
+    for kernel in Kernel::ALL {
+        if let Err(e) = ShaderSource::Embedded.compose(kernel).unwrap().validate() {
             panic!("{e}");
         }
     }
 }
 
+/// `shaders/` holds exactly the embedded files, each reached by some kernel.
 #[test]
-fn every_shader_file_is_part_of_a_kernel() {
+fn every_shader_file_is_embedded_and_part_of_a_kernel() {
     let dir = ShaderSource::source_dir();
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let name = entry.unwrap().file_name().into_string().unwrap();
-        assert!(
-            [TRACE_FILES, RESOLVE_FILES, PRESENT_FILES].iter().any(|files| files.contains(&name.as_str())),
-            "shaders/{name} is in no kernel"
-        );
+    let mut on_disk = BTreeSet::new();
+    for sub in ["kernels", "lib"] {
+        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
+            on_disk.insert(format!("{sub}/{}", entry.unwrap().file_name().into_string().unwrap()));
+        }
     }
+    assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
+    let used: BTreeSet<String> = Kernel::ALL
+        .iter()
+        .flat_map(|&k| ShaderSource::Embedded.compose(k).unwrap().files.into_iter().map(|(name, _)| name))
+        .collect();
+    for name in SOURCES {
+        assert!(used.contains(*name), "shaders/{name} is in no kernel");
+    }
+}
+
+/// The names a WGSL file declares at module scope.
+fn declarations(source: &str) -> Vec<String> {
+    let name = |rest: &str| rest.split(|c: char| !(c.is_alphanumeric() || c == '_')).next().unwrap_or_default().to_string();
+    source
+        .lines()
+        .filter_map(|line| {
+            if let Some(rest) = ["fn ", "struct ", "const "].iter().find_map(|k| line.strip_prefix(k)) {
+                return Some(name(rest));
+            }
+            // `var name`, `var<private> name`, `@group(0) @binding(1) var<storage, read> name`.
+            let var = line.find("var")?;
+            let after = &line[var + 3..];
+            let after = if after.starts_with('<') { &after[after.find('>')? + 1..] } else { after };
+            (line.starts_with("var") || line.starts_with('@')).then(|| name(after.trim_start()))
+        })
+        .filter(|name| !name.is_empty())
+        .collect()
+}
+
+/// Imports are stated, not inherited, and none is idle: a file uses a name
+/// declared in another file only if it imports that file, and it uses
+/// something of every file it imports. The primary kernel carries no ray tree.
+#[test]
+fn imports_are_exactly_what_each_file_uses() {
+    let read = |name: &str| std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
+    let declared: BTreeMap<String, Vec<String>> =
+        SOURCES.iter().filter(|n| n.starts_with("lib/")).map(|n| (n.to_string(), declarations(&read(n)))).collect();
+    let words = |source: &str| -> BTreeSet<String> {
+        let code: String = source.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
+        code.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect()
+    };
+    for name in SOURCES {
+        let source = read(name);
+        let (used, imported) = (words(&source), imports(&source));
+        for (file, names) in &declared {
+            if file == name {
+                continue;
+            }
+            let uses = names.iter().any(|n| used.contains(n));
+            assert_eq!(uses, imported.contains(file), "shaders/{name}: {} {file}", if uses { "uses but does not import" } else { "imports but does not use" });
+        }
+    }
+    let primary = ShaderSource::Embedded.compose(Kernel::Primary).unwrap();
+    assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
 }
 
 #[test]
 fn errors_name_the_file_and_line() {
     let dir = tempfile::tempdir().unwrap();
-    for name in TRACE_FILES {
-        std::fs::copy(ShaderSource::source_dir().join(name), dir.path().join(name)).unwrap();
+    for name in SOURCES {
+        let to = dir.path().join(name);
+        std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+        std::fs::copy(ShaderSource::source_dir().join(name), to).unwrap();
     }
-    let broken = std::fs::read_to_string(dir.path().join("sphere.wgsl")).unwrap().replacen("let b =", "let b = undefined_name +", 1);
-    std::fs::write(dir.path().join("sphere.wgsl"), &broken).unwrap();
+    let sphere = dir.path().join("lib/sphere.wgsl");
+    let broken = std::fs::read_to_string(&sphere).unwrap().replacen("let b =", "let b = undefined_name +", 1);
+    std::fs::write(&sphere, &broken).unwrap();
     let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
-    let err = ShaderSource::Dir(dir.path().into()).compose(TRACE_FILES).unwrap().validate().unwrap_err().to_string();
-    assert!(err.contains(&format!("shaders/sphere.wgsl:{line}")), "{err}");
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace).unwrap().validate().unwrap_err().to_string();
+    assert!(err.contains(&format!("shaders/lib/sphere.wgsl:{line}")), "{err}");
+
+    std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace).unwrap_err().to_string();
+    assert!(err.contains("lib/nowhere.wgsl"), "{err}");
 }
 
 /// Asserts the WGSL struct `name` has exactly the given members at the host's
@@ -95,8 +161,8 @@ fn host_structs_match_wgsl() {
     layout!(m, GpuPrim { a, b, c, kind_material, object, first, count });
     layout!(m, GpuNode { quantized, children });
     layout!(m, GpuGrid { origin, exponents });
-    for files in [RESOLVE_FILES, PRESENT_FILES] {
-        let m = ShaderSource::Embedded.compose(files).unwrap().validate().unwrap();
+    for kernel in [Kernel::Resolve, Kernel::Present] {
+        let m = module(kernel);
         layout!(m, ResolveParams { pixel_count, tone_map, exposure, view, scale, _pad0, _pad1, _pad2 });
     }
 }
@@ -128,11 +194,10 @@ fn shared_constants_come_from_the_host() {
     }
     let prelude = g::wgsl_prelude();
     let shared: Vec<&str> = prelude.lines().filter_map(|l| l.strip_prefix("const ")?.split(':').next()).collect();
-    for entry in std::fs::read_dir(ShaderSource::source_dir()).unwrap() {
-        let path = entry.unwrap().path();
-        let text = std::fs::read_to_string(&path).unwrap();
+    for file in SOURCES {
+        let text = std::fs::read_to_string(ShaderSource::source_dir().join(file)).unwrap();
         for name in &shared {
-            assert!(!text.contains(&format!("const {name}:")), "{} declares the shared constant {name} again", path.display());
+            assert!(!text.contains(&format!("const {name}:")), "shaders/{file} declares the shared constant {name} again");
         }
     }
 }

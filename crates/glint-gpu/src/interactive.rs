@@ -10,8 +10,8 @@ use bytemuck::Zeroable;
 use glam::Vec3;
 use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, ResolveParams, View, PROJECTION_ORTHOGRAPHIC};
 
-use crate::renderer::{create_pipelines, STAT_BYTES};
-use crate::shaders::{ShaderSource, PRESENT_FILES};
+use crate::renderer::{create_pipeline, STAT_BYTES};
+use crate::shaders::{Kernel, ShaderSource};
 use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
 
 /// Bytes of one accumulation pixel (rgb sum and sample count).
@@ -83,7 +83,7 @@ impl SceneBuffers {
 impl Renderer {
     /// Compiles the present kernel from `source`.
     pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
-        let [pipeline] = create_pipelines(&self.device, source, PRESENT_FILES, ["present_main"], None)?;
+        let pipeline = create_pipeline(&self.device, source, Kernel::Present, None)?;
         Ok(PresentPipeline { pipeline })
     }
 

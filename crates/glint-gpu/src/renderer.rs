@@ -11,7 +11,7 @@ use glint_scene::gpu_types::{
 };
 use wgpu::util::DeviceExt;
 
-use crate::shaders::{ShaderSource, RESOLVE_FILES, TRACE_FILES};
+use crate::shaders::{Kernel, ShaderSource};
 use crate::{GpuError, Image};
 
 /// Work per dispatch is kept near this, so no single submission runs long enough
@@ -148,9 +148,9 @@ impl Renderer {
             bind_group_layouts: &[Some(&scene_layout)],
             immediate_size: 0,
         });
-        let [trace, primary] =
-            create_pipelines(&device, source, TRACE_FILES, ["trace_main", "primary_main"], Some(&pipeline_layout))?;
-        let [resolve] = create_pipelines(&device, source, RESOLVE_FILES, ["resolve_main"], None)?;
+        let trace = create_pipeline(&device, source, Kernel::Trace, Some(&pipeline_layout))?;
+        let primary = create_pipeline(&device, source, Kernel::Primary, Some(&pipeline_layout))?;
+        let resolve = create_pipeline(&device, source, Kernel::Resolve, None)?;
         let lost = Arc::new(Mutex::new(None));
         let record = Arc::clone(&lost);
         device.set_device_lost_callback(move |reason, message| {
@@ -482,18 +482,18 @@ fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 /// an error scope, so a shader that the driver rejects fails here, loudly,
 /// instead of later reading back zeros. With `layout` `None` each pipeline
 /// derives its own bind group layout.
-pub(crate) fn create_pipelines<const N: usize>(
+pub(crate) fn create_pipeline(
     device: &wgpu::Device,
     source: &ShaderSource,
-    files: &[&'static str],
-    entries: [&str; N],
+    kernel: Kernel,
     layout: Option<&wgpu::PipelineLayout>,
-) -> Result<[wgpu::ComputePipeline; N], GpuError> {
-    let composed = source.compose(files)?;
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let entry = kernel.entry_point();
+    let composed = source.compose(kernel)?;
     composed.validate()?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let descriptor = wgpu::ShaderModuleDescriptor {
-        label: Some(entries[0]),
+        label: Some(entry),
         source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
     };
     let module = match source {
@@ -510,20 +510,18 @@ pub(crate) fn create_pipelines<const N: usize>(
         },
         ShaderSource::Dir(_) => device.create_shader_module(descriptor),
     };
-    let pipelines = entries.map(|entry| {
-        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(entry),
-            layout,
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        })
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
     });
     if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Shader(format!("{}: {}", entries.join(", "), one_line(&e))));
+        return Err(GpuError::Shader(format!("{entry}: {}", one_line(&e))));
     }
-    Ok(pipelines)
+    Ok(pipeline)
 }
 
 /// An error and its causes on one line (wgpu's own display spans several).

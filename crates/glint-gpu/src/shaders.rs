@@ -1,51 +1,95 @@
-//! WGSL composition. Each kernel is the generated prelude of constants shared
-//! with the host (`gpu_types::wgsl_prelude`) followed by an ordered
-//! concatenation of the one-concept files in `shaders/`; WGSL allows
-//! module-scope declarations in any order, so the order only makes errors
-//! easier to read. Errors are mapped back to the file and line they came from.
+//! WGSL composition. `shaders/kernels/` holds one file per kernel (its entry
+//! point and its own bindings), `shaders/lib/` the shared code. A file states
+//! what it uses in a line `// import: a b c` (files of `lib/`, without the
+//! extension); a kernel is the generated prelude of constants shared with the
+//! host (`gpu_types::wgsl_prelude`) followed by the files its imports reach,
+//! each once, every file after the files it imports. So a kernel's file list
+//! is derived from the code, and holds only what the kernel uses. Errors are
+//! mapped back to the file and line they came from.
 //!
-//! The files are embedded at build time; `ShaderSource::from_dir` reads them from
+//! The files are embedded at build time; `ShaderSource::Dir` reads them from
 //! disk instead (the viewer's hot reload).
 
 use std::path::{Path, PathBuf};
 
 use crate::GpuError;
 
-/// Declares each kernel's file list and embeds every listed file, so a file
-/// is named once.
-macro_rules! kernels {
-    ($($(#[$doc:meta])* $kernel:ident = [$($name:literal),* $(,)?];)*) => {
-        $($(#[$doc])* pub const $kernel: &[&str] = &[$($name),*];)*
-        const EMBEDDED: &[(&str, &str)] =
-            &[$($(($name, include_str!(concat!("../../../shaders/", $name))),)*)*];
+/// Embeds every shader file, named once: the list hot reload watches.
+macro_rules! sources {
+    ($($name:literal),* $(,)?) => {
+        /// Every WGSL file, relative to `shaders/`.
+        pub const SOURCES: &[&str] = &[$($name),*];
+        const EMBEDDED: &[(&str, &str)] = &[$(($name, include_str!(concat!("../../../shaders/", $name)))),*];
     };
 }
 
-kernels! {
-    /// The files of the trace and primary kernels, in order.
-    TRACE_FILES = [
-        "types.wgsl",
-        "bindings.wgsl",
-        "camera.wgsl",
-        "sample.wgsl",
-        "ray_frame.wgsl",
-        "sphere.wgsl",
-        "triangle.wgsl",
-        "polygon.wgsl",
-        "cone.wgsl",
-        "primitive.wgsl",
-        "bvh.wgsl",
-        "reflect.wgsl",
-        "refract.wgsl",
-        "shadow.wgsl",
-        "shade.wgsl",
-        "trace.wgsl",
-        "primary.wgsl",
-    ];
-    /// The files of the resolve kernel (accumulated samples → display values).
-    RESOLVE_FILES = ["resolve.wgsl"];
-    /// The files of the viewer's present kernel: the resolve, written into a texture.
-    PRESENT_FILES = ["resolve.wgsl", "present.wgsl"];
+sources![
+    "kernels/trace.wgsl",
+    "kernels/primary.wgsl",
+    "kernels/resolve.wgsl",
+    "kernels/present.wgsl",
+    "lib/types.wgsl",
+    "lib/bindings.wgsl",
+    "lib/camera.wgsl",
+    "lib/sample.wgsl",
+    "lib/ray_frame.wgsl",
+    "lib/sphere.wgsl",
+    "lib/triangle.wgsl",
+    "lib/polygon.wgsl",
+    "lib/cone.wgsl",
+    "lib/primitive.wgsl",
+    "lib/bvh.wgsl",
+    "lib/reflect.wgsl",
+    "lib/refract.wgsl",
+    "lib/shadow.wgsl",
+    "lib/shade.wgsl",
+    "lib/dispatch.wgsl",
+    "lib/display.wgsl",
+];
+
+/// The kernels, each one file of `shaders/kernels/` with one entry point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kernel {
+    /// The full Whitted render.
+    Trace,
+    /// The primary ray alone: debug views, AOVs, picking.
+    Primary,
+    /// Accumulated samples to display values, for read-back.
+    Resolve,
+    /// The same, into the viewer's texture.
+    Present,
+}
+
+impl Kernel {
+    pub const ALL: [Kernel; 4] = [Kernel::Trace, Kernel::Primary, Kernel::Resolve, Kernel::Present];
+
+    pub fn file(self) -> &'static str {
+        match self {
+            Kernel::Trace => "kernels/trace.wgsl",
+            Kernel::Primary => "kernels/primary.wgsl",
+            Kernel::Resolve => "kernels/resolve.wgsl",
+            Kernel::Present => "kernels/present.wgsl",
+        }
+    }
+
+    pub fn entry_point(self) -> &'static str {
+        match self {
+            Kernel::Trace => "trace_main",
+            Kernel::Primary => "primary_main",
+            Kernel::Resolve => "resolve_main",
+            Kernel::Present => "present_main",
+        }
+    }
+}
+
+/// The `lib/` files `source` imports, as paths relative to `shaders/`.
+pub fn imports(source: &str) -> Vec<String> {
+    source
+        .lines()
+        .filter_map(|line| line.trim().strip_prefix("// import:"))
+        .flat_map(str::split_whitespace)
+        .map(|name| format!("lib/{name}.wgsl"))
+        .collect()
 }
 
 /// Where the WGSL files come from.
@@ -59,8 +103,8 @@ pub enum ShaderSource {
 #[derive(Debug, Clone)]
 pub struct Composed {
     pub source: String,
-    /// (file name, first line in `source`, 1-based)
-    pub files: Vec<(&'static str, usize)>,
+    /// (file name relative to `shaders/`, first line in `source`, 1-based)
+    pub files: Vec<(String, usize)>,
 }
 
 /// How errors name the generated prelude.
@@ -70,7 +114,7 @@ impl Composed {
     /// Turns a line of the composed source into "file:line".
     pub fn locate(&self, line: usize) -> String {
         match self.files.iter().rev().find(|(_, start)| *start <= line) {
-            Some((name, start)) if *name == PRELUDE => format!("{name}, line {}", line - start + 1),
+            Some((name, start)) if name == PRELUDE => format!("{name}, line {}", line - start + 1),
             Some((name, start)) => format!("shaders/{name}:{}", line - start + 1),
             None => format!("line {line}"),
         }
@@ -102,28 +146,50 @@ impl ShaderSource {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders")
     }
 
-    fn read(&self, name: &'static str) -> Result<String, GpuError> {
+    fn read(&self, name: &str) -> Result<String, GpuError> {
         match self {
-            ShaderSource::Embedded => Ok(EMBEDDED
+            ShaderSource::Embedded => EMBEDDED
                 .iter()
                 .find(|(n, _)| *n == name)
                 .map(|(_, s)| s.to_string())
-                .expect("every kernel file is embedded")),
+                .ok_or_else(|| GpuError::Shader(format!("shaders/{name}: no such shader file"))),
             ShaderSource::Dir(dir) => std::fs::read_to_string(dir.join(name))
                 .map_err(|e| GpuError::Shader(format!("{}: {e}", dir.join(name).display()))),
         }
     }
 
-    pub fn compose(&self, files: &[&'static str]) -> Result<Composed, GpuError> {
+    /// The kernel's source: the prelude, then every file its imports reach.
+    pub fn compose(&self, kernel: Kernel) -> Result<Composed, GpuError> {
+        let mut order = Vec::new();
+        self.visit(kernel.file(), &mut Vec::new(), &mut order)?;
         let mut source = glint_scene::gpu_types::wgsl_prelude();
-        let mut starts = vec![(PRELUDE, 1)];
-        for name in files {
-            starts.push((*name, source.lines().count() + 1));
-            source.push_str(&self.read(name)?);
+        let mut starts = vec![(PRELUDE.to_string(), 1)];
+        for (name, text) in order {
+            starts.push((name, source.lines().count() + 1));
+            source.push_str(&text);
             if !source.ends_with('\n') {
                 source.push('\n');
             }
         }
         Ok(Composed { source, files: starts })
+    }
+
+    /// Appends `name` to `order` after everything it imports (depth first);
+    /// `path` is the chain of imports being followed, to report a cycle.
+    fn visit(&self, name: &str, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
+        if order.iter().any(|(done, _)| done == name) {
+            return Ok(());
+        }
+        if path.iter().any(|p| p == name) {
+            return Err(GpuError::Shader(format!("shaders/{name}: imports itself through {}", path.join(" → "))));
+        }
+        let text = self.read(name)?;
+        path.push(name.to_string());
+        for import in imports(&text) {
+            self.visit(&import, path, order)?;
+        }
+        path.pop();
+        order.push((name.to_string(), text));
+        Ok(())
     }
 }

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, StrokeKind, Vec2};
 use glam::Vec3;
-use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
+use glint_gpu::shaders::{ShaderSource, SOURCES};
 use glint_gpu::{GpuError, PngBits, RenderOptions, ToneMap};
 use glint_scene::gpu_types::{self, View};
 use glint_scene::toml_scene::MAX_IMAGE_SIDE;
@@ -31,6 +31,9 @@ pub struct ViewerOptions {
     pub scene: Option<PathBuf>,
     /// Where the WGSL comes from; a folder is watched and reloaded on change.
     pub shaders: ShaderSource,
+    /// The TOML text of `scene` when it is built into the program rather than
+    /// read from disk (`scene` then only names it, and is not watched).
+    pub scene_text: Option<&'static str>,
 }
 
 impl ViewerOptions {
@@ -39,7 +42,7 @@ impl ViewerOptions {
     pub fn new(scene: Option<PathBuf>) -> Self {
         let dir = ShaderSource::source_dir();
         let shaders = if dir.is_dir() { ShaderSource::Dir(dir) } else { ShaderSource::Embedded };
-        Self { scene, shaders }
+        Self { scene, shaders, scene_text: None }
     }
 }
 
@@ -197,6 +200,8 @@ pub struct ViewerApp {
     compile_again: bool,
 
     pub(crate) scene_path: Option<PathBuf>,
+    /// The text of a built-in scene, read instead of `scene_path`.
+    scene_text: Option<&'static str>,
     scene_watch: Option<Watch>,
     load_generation: u64,
     scene_generation: u64,
@@ -267,7 +272,7 @@ impl ViewerApp {
         }));
         let shader_watch = match &options.shaders {
             ShaderSource::Dir(dir) => {
-                let files = TRACE_FILES.iter().chain(RESOLVE_FILES).chain(PRESENT_FILES).map(|f| dir.join(f)).collect();
+                let files = SOURCES.iter().map(|f| dir.join(f)).collect();
                 Some(Watch::new(files))
             }
             ShaderSource::Embedded => None,
@@ -286,6 +291,7 @@ impl ViewerApp {
             compiling: false,
             compile_again: false,
             scene_path: None,
+            scene_text: None,
             scene_watch: None,
             load_generation: 0,
             scene_generation: 0,
@@ -317,8 +323,10 @@ impl ViewerApp {
             app.notice = Some((warning, true));
         }
         app.start_compile();
-        if let Some(path) = options.scene {
-            app.open(path);
+        match (options.scene, options.scene_text) {
+            (Some(name), Some(text)) => app.open_built_in(name, text),
+            (Some(path), None) => app.open(path),
+            (None, _) => {}
         }
         Ok(app)
     }
@@ -401,6 +409,16 @@ impl ViewerApp {
         self.scene_watch = Some(Watch::new(vec![path.clone()]));
         self.open_path = path.display().to_string();
         self.scene_path = Some(path);
+        self.scene_text = None;
+        self.start_load(false);
+    }
+
+    /// Opens a TOML scene built into the program, called `name`.
+    fn open_built_in(&mut self, name: PathBuf, text: &'static str) {
+        self.scene_watch = None;
+        self.open_path = String::new();
+        self.scene_path = Some(name);
+        self.scene_text = Some(text);
         self.start_load(false);
     }
 
@@ -409,8 +427,12 @@ impl ViewerApp {
         self.load_generation += 1;
         self.loading = true;
         let generation = self.load_generation;
+        let text = self.scene_text;
         self.jobs.spawn("load", move || {
-            let result = glint_scene::load(&path);
+            let result = match text {
+                Some(text) => glint_scene::toml_scene::parse(text, &path),
+                None => glint_scene::load(&path),
+            };
             Job::Loaded { generation, path, reload, result }
         });
     }

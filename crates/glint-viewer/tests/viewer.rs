@@ -13,7 +13,7 @@ use egui::{Event, Modifiers, PointerButton, Pos2};
 use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
 use glam::Vec3;
-use glint_gpu::shaders::{ShaderSource, PRESENT_FILES, RESOLVE_FILES, TRACE_FILES};
+use glint_gpu::shaders::{ShaderSource, SOURCES};
 use glint_viewer::{ViewerApp, ViewerOptions};
 use image::RgbaImage;
 
@@ -75,7 +75,7 @@ fn harness(scene: Option<PathBuf>, shaders: ShaderSource) -> Harness<'static, Vi
     Harness::builder()
         .with_size([1100.0, 760.0])
         .wgpu_setup(glint_viewer::wgpu_setup())
-        .build_eframe(move |cc| ViewerApp::new(cc, ViewerOptions { scene, shaders }).unwrap_or_else(|e| panic!("{e}")))
+        .build_eframe(move |cc| ViewerApp::new(cc, ViewerOptions { scene, shaders, scene_text: None }).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// Steps frames until `done` holds, failing after `TIMEOUT`.
@@ -291,20 +291,22 @@ fn a_dropped_file_opens_and_an_edited_file_reloads() {
 #[test]
 fn a_shader_error_is_shown_and_the_last_good_pipeline_keeps_running() {
     let shaders = tempfile::tempdir().unwrap();
-    for name in TRACE_FILES.iter().chain(RESOLVE_FILES).chain(PRESENT_FILES) {
-        std::fs::copy(ShaderSource::source_dir().join(name), shaders.path().join(name)).unwrap();
+    for name in SOURCES {
+        let to = shaders.path().join(name);
+        std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+        std::fs::copy(ShaderSource::source_dir().join(name), to).unwrap();
     }
     let dir = tempfile::tempdir().unwrap();
     let mut h = harness(Some(write_scene(dir.path(), SCENE)), ShaderSource::Dir(shaders.path().into()));
     settle(&mut h);
     let good = image_of(&mut h);
 
-    let shade = shaders.path().join("shade.wgsl");
+    let shade = shaders.path().join("lib/shade.wgsl");
     let source = std::fs::read_to_string(&shade).unwrap();
     std::fs::write(&shade, format!("{source}\nfn broken( {{\n")).unwrap();
     wait_for(&mut h, "the shader error", |app| !app.errors().is_empty());
     let error = h.state().errors()[0].clone();
-    assert!(error.contains("shaders/shade.wgsl:"), "{error}");
+    assert!(error.contains("shaders/lib/shade.wgsl:"), "{error}");
 
     // Still rendering with the old kernels: a change converges again.
     h.get_all_by_label("x").next().unwrap().set_value_accesskit(2.0);

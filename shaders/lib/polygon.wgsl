@@ -3,6 +3,7 @@
 // alike. The crossing test runs in the ray's frame (ray_frame.wgsl), where the
 // hit point is the origin and each edge's side is an exact function of its two
 // sheared vertices, so polygons sharing an edge leave no gap and no overlap.
+// import: bindings ray_frame types
 
 fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
     let n = p.a.xyz;

@@ -5,6 +5,7 @@
 // tent over [−1, 1] around the centre instead of a box, so every sample weighs
 // the same. Random numbers come from a hash of pixel, sample index and seed, so
 // a render is the same for the same seed.
+// import: bindings
 
 fn pcg_hash(v: u32) -> u32 {
     let state = v * 747796405u + 2891336453u;

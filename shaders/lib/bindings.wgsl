@@ -1,4 +1,5 @@
 // Resources of the trace kernel, in bind group 0.
+// import: types
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;

@@ -1,4 +1,5 @@
 // Ray–sphere intersection: |o + t·d − c|² = r², d of unit length.
+// import: types
 
 fn sphere_intersect(p: GpuPrim, ray: Ray, t_min: f32, t_max: f32) -> f32 {
     let center = p.a.xyz;

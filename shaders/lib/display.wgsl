@@ -18,7 +18,6 @@ struct ResolveParams {
 
 @group(0) @binding(0) var<uniform> params: ResolveParams;
 @group(0) @binding(1) var<storage, read> samples: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read_write> display: array<vec4<f32>>;
 
 fn tone_map(c: vec3<f32>) -> vec3<f32> {
     switch params.tone_map {
@@ -74,13 +73,4 @@ fn display_value(s: vec4<f32>) -> vec3<f32> {
             return srgb_encode(clamp(tone_map(linear), vec3<f32>(0.0), vec3<f32>(1.0)));
         }
     }
-}
-
-@compute @workgroup_size(64)
-fn resolve_main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = gid.y * groups.x * 64u + gid.x;
-    if i >= params.pixel_count {
-        return;
-    }
-    display[i] = vec4<f32>(finite_or_zero(display_value(samples[i])), 1.0);
 }

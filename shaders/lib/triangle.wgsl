@@ -1,6 +1,7 @@
 // Ray–triangle intersection, watertight (Woop, Benthin & Wald 2013; see
 // ray_frame.wgsl) and two-sided. A ray through a shared edge or vertex gets a
 // zero edge function from every triangle there and hits them all.
+// import: bindings ray_frame types
 
 fn triangle_intersect(p: GpuPrim, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
     let a = to_frame(frame, p.a.xyz);

@@ -1,6 +1,7 @@
 // Hard shadows: how much of a light reaches `point`. Occluders beyond the light
 // do not count; the ray leaves along the geometric normal so smooth-shaded
 // surfaces do not shadow themselves at the terminator.
+// import: bindings bvh dispatch primitive types
 
 fn light_visibility(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>, distance: f32) -> vec3<f32> {
     if (globals.flags & FLAG_SHADOWS) == 0u {

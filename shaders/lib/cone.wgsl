@@ -2,6 +2,7 @@
 // base B, r1 at the apex A. With axis a = (A − B)/h and slope k = (r1 − r0)/h, a
 // point P lies on the surface when |q − (q·a)a| = r0 + k(q·a), q = P − B, and
 // 0 ≤ q·a ≤ h.
+// import: types
 
 fn cone_intersect(p: GpuPrim, ray: Ray, t_min_in: f32, t_max_in: f32) -> f32 {
     let base = p.a.xyz;

@@ -1,4 +1,5 @@
 // Dispatch on primitive kind: intersection and surface normals.
+// import: bindings cone polygon ray_frame sphere triangle types
 
 // Takes the primitive's index, not its value: each case then loads only the
 // fields its kind uses (a load per SIMD lane is what a software rasteriser

@@ -1,7 +1,8 @@
-// Present: the viewer's resolve. Composed after resolve.wgsl, whose
-// `display_value` it shares, it writes display values straight into an rgba8
+// Present: the viewer's resolve. It shares `display_value` with the resolve
+// kernel and writes display values straight into an rgba8
 // texture that the UI draws, so no image goes through the CPU. egui treats
 // rgba8unorm texels as sRGB-encoded, which is what `display_value` gives.
+// import: display
 
 @group(0) @binding(3) var image: texture_storage_2d<rgba8unorm, write>;
 

@@ -3,8 +3,9 @@
 // with specular k_s·O_s·(R·V)^n (Phong) or k_s·O_s·(N·H)^n (Blinn-Phong), O_s white
 // when the material has none, or Schlick's F(V·H) with a coloured F0 in place
 // of k_s·O_s for metallic highlights. S is the shadow term, att the attenuation.
+// import: bindings bvh primitive reflect shadow types
 
-fn attenuation(light: GpuLight, d: f32) -> f32 {
+fn light_attenuation(light: GpuLight, d: f32) -> f32 {
     switch light.attenuation {
         case ATTENUATION_INVERSE_SQUARE: { return 1.0 / (d * d); }
         case ATTENUATION_POLYNOMIAL: {
@@ -46,7 +47,7 @@ fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
             let to_light = light.position - s.point;
             distance = length(to_light);
             l = to_light / distance;
-            att = attenuation(light, distance);
+            att = light_attenuation(light, distance);
         }
         let n_dot_l = dot(s.shading, l);
         // A surface facing away from the light gets nothing and casts no shadow ray.

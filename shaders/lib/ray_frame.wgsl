@@ -4,6 +4,7 @@
 // passes becomes the sign of a 2D cross product of two sheared vertices. Two
 // primitives sharing an edge compute that product from the same numbers, once
 // with each sign, so no ray slips between them.
+// import: types
 
 struct RayFrame {
     origin: vec3<f32>,

@@ -1,6 +1,7 @@
 // Primary rays. `pixel` is a position on the image in pixels, (0, 0) at the
 // top-left corner; a pixel's centre is at (i + 0.5, j + 0.5), so that
 // u_s = l + (r − l)(i + 0.5)/n_x with l = −r, and v_s = t − (t − b)(j + 0.5)/n_y.
+// import: bindings types
 
 fn camera_ray(pixel: vec2<f32>) -> Ray {
     let cam = globals.camera;

@@ -1,0 +1,41 @@
+// What every tracing kernel does around its rays: which pixel of the band an
+// invocation has, adding its sample to the pixel's sum, and counting rays.
+// import: bindings
+
+var<private> local_stats: array<u32, STAT_COUNT>;
+
+fn count_ray(kind: u32) {
+    local_stats[kind] += 1u;
+}
+
+// The pixel an invocation traces in the current band, if the band covers one.
+fn band_pixel(gid: vec3<u32>) -> vec2<u32> {
+    return gid.xy + globals.tile_origin;
+}
+
+fn in_band(pixel: vec2<u32>) -> bool {
+    return pixel.x < globals.width && pixel.y < min(globals.height, globals.row_end);
+}
+
+// The first sample of a render writes its pixel (the sum starts from zero), so
+// it need not read it: a load per lane saved.
+fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
+    let index = pixel.y * globals.width + pixel.x;
+    if globals.sample_index == 0u {
+        accum[index] = vec4<f32>(color, 1.0);
+    } else {
+        accum[index] += vec4<f32>(color, 1.0);
+    }
+}
+
+// Ray counts go to this workgroup's slot: a workgroup barrier to sum them
+// first would cost more than the few uncontended atomics.
+fn flush_ray_counts(wid: vec3<u32>, groups: vec3<u32>) {
+    let slots = arrayLength(&stats) / STAT_COUNT;
+    let base = ((wid.y * groups.x + wid.x) % slots) * STAT_COUNT;
+    for (var k = 0u; k < STAT_COUNT; k++) {
+        if local_stats[k] != 0u {
+            atomicAdd(&stats[base + k], local_stats[k]);
+        }
+    }
+}
