@@ -1,9 +1,12 @@
-// Resolve: the average of the accumulated samples becomes a display value in
-// [0, 1] per channel. Radiance views (shaded, albedo, diffuse) are scaled by the
-// exposure, tone mapped and encoded as sRGB; the data views are mapped to
-// colours: normals as 0.5 + 0.5·n, depth as grey (white near, black at
-// `scale`), object ids as distinct colours, heat maps as a false-colour ramp of
-// nodes visited over `scale`. Misses are black.
+// Resolve: the average of a pixel's accumulated samples becomes its linear
+// value and its display value in [0, 1] per channel. One exposure rule for
+// every output: the views of light and colour (shaded, albedo, diffuse) are
+// scaled by the exposure, in the linear value as in the display value; the
+// data views (normal, depth, id, heat map) keep their values. Light views are
+// then tone mapped and encoded as sRGB; data views are mapped to colours:
+// normals as 0.5 + 0.5·n, depth as grey (white near, black at `scale`), object
+// ids as distinct colours, heat maps as a false-colour ramp of nodes visited
+// over `scale`. Misses are black. crates/glint-gpu/src/display.rs is its CPU twin.
 
 struct ResolveParams {
     pixel_count: u32,
@@ -53,8 +56,17 @@ fn finite_or_zero(c: vec3<f32>) -> vec3<f32> {
     return select(vec3<f32>(0.0), c, abs(c) <= vec3<f32>(3.0e38));
 }
 
+fn is_data_view(view: u32) -> bool {
+    return view == VIEW_NORMAL || view == VIEW_DEPTH || view == VIEW_ID || view == VIEW_HEATMAP;
+}
+
+fn linear_value(s: vec4<f32>) -> vec3<f32> {
+    let mean = s.rgb / max(s.w, 1.0);
+    return select(mean * params.exposure, mean, is_data_view(params.view));
+}
+
 fn display_value(s: vec4<f32>) -> vec3<f32> {
-    let v = s.rgb / max(s.w, 1.0);
+    let v = linear_value(s);
     switch params.view {
         case VIEW_NORMAL: {
             return select(vec3<f32>(0.0), 0.5 + 0.5 * v, dot(v, v) > 0.25);
@@ -69,8 +81,7 @@ fn display_value(s: vec4<f32>) -> vec3<f32> {
             return heat_ramp(v.x / params.scale);
         }
         default: {
-            let linear = max(finite_or_zero(v) * params.exposure, vec3<f32>(0.0));
-            return srgb_encode(clamp(tone_map(linear), vec3<f32>(0.0), vec3<f32>(1.0)));
+            return srgb_encode(clamp(tone_map(max(finite_or_zero(v), vec3<f32>(0.0))), vec3<f32>(0.0), vec3<f32>(1.0)));
         }
     }
 }

@@ -3,6 +3,7 @@
 //! accumulated samples and reads the image back.
 
 pub mod device;
+pub mod display;
 pub mod frame;
 pub mod interactive;
 pub mod output;

@@ -347,10 +347,25 @@ impl Renderer {
         pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
     }
 
-    /// Turns the accumulated samples into display values (tone mapped, sRGB) and
-    /// reads both back.
+    /// Turns the accumulated samples into display values (tone mapped, sRGB)
+    /// and linear values, and reads both back.
     pub fn resolve(&self, scene: &SceneBuffers, options: &RenderOptions) -> Result<Image, GpuError> {
-        let pixels = scene.width * scene.height;
+        self.resolve_buffer(&scene.accum, scene.width, scene.height, options)
+    }
+
+    /// Resolves `samples` (rgb sums and sample counts) as the kernel resolves
+    /// an accumulation buffer: what the CPU twin in `display.rs` is tested against.
+    pub fn resolve_samples(&self, samples: &[[f32; 4]], width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
+        let buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("samples"),
+            contents: bytemuck::cast_slice(samples),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        self.resolve_buffer(&buffer, width, height, options)
+    }
+
+    fn resolve_buffer(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
+        let pixels = width * height;
         let bytes = u64::from(pixels) * 16;
         let params = ResolveParams {
             pixel_count: pixels,
@@ -365,23 +380,27 @@ impl Renderer {
             contents: bytemuck::bytes_of(&params),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let display = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("display"),
-            size: bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let output = |label| {
+            self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let (display, linear) = (output("display"), output("linear"));
         let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("resolve"),
             layout: &self.resolve.get_bind_group_layout(0),
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: scene.accum.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: samples.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 2, resource: display.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: linear.as_entire_binding() },
             ],
         });
         let display_readback = self.readback_buffer(bytes);
-        let accum_readback = self.readback_buffer(bytes);
+        let linear_readback = self.readback_buffer(bytes);
         let mut encoder = self.device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
@@ -390,20 +409,11 @@ impl Renderer {
             dispatch_linear(&mut pass, pixels.div_ceil(64), self.device.limits().max_compute_workgroups_per_dimension);
         }
         encoder.copy_buffer_to_buffer(&display, 0, &display_readback, 0, bytes);
-        encoder.copy_buffer_to_buffer(&scene.accum, 0, &accum_readback, 0, bytes);
+        encoder.copy_buffer_to_buffer(&linear, 0, &linear_readback, 0, bytes);
         self.queue.submit([encoder.finish()]);
-        let display: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&self.read(&display_readback)?);
-        let accum: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&self.read(&accum_readback)?);
-        // Radiance is scaled by the exposure; data views keep their values.
-        let exposure = if options.view.is_primary_only() { 1.0 } else { options.exposure };
-        let linear = accum
-            .iter()
-            .map(|s| {
-                let n = s[3].max(1.0);
-                [s[0] / n * exposure, s[1] / n * exposure, s[2] / n * exposure, 1.0]
-            })
-            .collect();
-        Ok(Image { width: scene.width, height: scene.height, display, linear })
+        let display = bytemuck::pod_collect_to_vec(&self.read(&display_readback)?);
+        let linear = bytemuck::pod_collect_to_vec(&self.read(&linear_readback)?);
+        Ok(Image { width, height, display, linear })
     }
 
     pub(crate) fn readback_buffer(&self, size: u64) -> wgpu::Buffer {

@@ -137,6 +137,12 @@ impl View {
     pub fn is_primary_only(self) -> bool {
         self != View::Shaded
     }
+
+    /// Views of values rather than light (normal, depth, id, heat map): the
+    /// exposure never scales them and they are not tone mapped.
+    pub fn is_data(self) -> bool {
+        matches!(self, View::Normal | View::Depth | View::Id | View::Heatmap)
+    }
 }
 
 /// How samples are spread over and around their pixel.
