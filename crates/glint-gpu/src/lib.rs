@@ -8,6 +8,7 @@ pub mod frame;
 pub mod interactive;
 pub mod output;
 pub mod renderer;
+pub mod schedule;
 pub mod shaders;
 
 pub use device::{Gpu, ADAPTER_ENV};

@@ -1,9 +1,8 @@
 //! The render pipeline on the device: upload → dispatch tiles → resolve → read back.
 
 use bytemuck::Zeroable;
-use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use glint_scene::gpu_types::{
     Filter, Globals, GpuScene, ResolveParams, View, STAT_COUNT, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
@@ -11,12 +10,9 @@ use glint_scene::gpu_types::{
 };
 use wgpu::util::DeviceExt;
 
+use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::shaders::{Kernel, ShaderSource};
 use crate::{GpuError, Image};
-
-/// Work per dispatch is kept near this, so no single submission runs long enough
-/// to trip a GPU watchdog (and progress is reported often).
-const DISPATCH_TARGET: Duration = Duration::from_millis(150);
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -120,9 +116,9 @@ pub struct Renderer {
     pub(crate) resolve: wgpu::ComputePipeline,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
-    /// Pixels per dispatch that met the time target last time, so the next
-    /// frame starts with bands of the right size.
-    band_pixels: AtomicU32,
+    /// Band sizes of batch renders, kept from frame to frame so the next one
+    /// starts with bands of the right size.
+    bands: Mutex<BandScheduler>,
 }
 
 /// A scene uploaded for one image size.
@@ -156,7 +152,7 @@ impl Renderer {
         device.set_device_lost_callback(move |reason, message| {
             *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
         });
-        Ok(Self { device, queue, trace, primary, scene_layout, resolve, lost, band_pixels: AtomicU32::new(8 * 512) })
+        Ok(Self { device, queue, trace, primary, scene_layout, resolve, lost, bands: Mutex::new(BandScheduler::new(BATCH_TARGET)) })
     }
 
     pub fn device(&self) -> &wgpu::Device {
@@ -296,12 +292,12 @@ impl Renderer {
         let (width, height) = (scene.width, scene.height);
         let stats_readback = self.readback_buffer(STAT_BYTES);
         let mut stats = RayStats::default();
-        // Whole workgroups of 8 rows, so no lane of a band idles past its end.
-        let adaptive_rows = (self.band_pixels.load(Ordering::Relaxed) / width).max(8) / 8 * 8;
-        let mut rows = options.band_rows.unwrap_or(adaptive_rows).clamp(1, height);
         let mut y = 0;
         while y < height {
-            let band = rows.min(height - y);
+            let band = match options.band_rows {
+                Some(rows) => rows.clamp(1, height - y),
+                None => self.bands.lock().unwrap_or_else(|e| e.into_inner()).rows(width, height - y),
+            };
             let mut encoder = self.device.create_command_encoder(&Default::default());
             encoder.clear_buffer(&scene.stats, 0, None);
             self.encode_band(scene, sample_index, options, y..y + band, &mut encoder);
@@ -313,8 +309,7 @@ impl Renderer {
             y += band;
             progress(u64::from(y));
             if options.band_rows.is_none() {
-                rows = next_band_rows(rows, start.elapsed());
-                self.band_pixels.store(rows.saturating_mul(width), Ordering::Relaxed);
+                self.bands.lock().unwrap_or_else(|e| e.into_inner()).record(width, band, start.elapsed());
             }
         }
         Ok(stats)
@@ -440,18 +435,6 @@ impl Renderer {
         let bytes = buffer.get_mapped_range(..).map_err(|e| GpuError::Runtime(e.to_string()))?.to_vec();
         buffer.unmap();
         Ok(bytes)
-    }
-}
-
-/// The next band height (a multiple of 8 rows) given how long the last took,
-/// steering each dispatch towards `DISPATCH_TARGET`.
-fn next_band_rows(rows: u32, took: Duration) -> u32 {
-    if took < DISPATCH_TARGET / 3 {
-        rows.saturating_mul(2).min(4096)
-    } else if took > DISPATCH_TARGET * 2 {
-        (rows / 2).max(8) / 8 * 8
-    } else {
-        rows
     }
 }
 

@@ -11,12 +11,11 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
+use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
 use glint_scene::Scene;
 
-/// The longest a band of rows should keep the device busy.
-const BAND_TARGET: Duration = Duration::from_millis(30);
 /// Bands submitted but not finished; more would only queue up latency.
 const MAX_IN_FLIGHT: usize = 2;
 /// The window over which Mrays/s is averaged.
@@ -80,7 +79,7 @@ pub struct Accumulation {
     next_row: u32,
     /// Rows of the current sample not yet traced; `None` for all of them.
     rows_left: Option<u32>,
-    band_rows: u32,
+    bands: BandScheduler,
     in_flight: Arc<AtomicUsize>,
     timing: Arc<Mutex<BandTiming>>,
     /// The texture shows an image of the current canvas.
@@ -96,8 +95,7 @@ impl Default for Accumulation {
             samples: 0,
             next_row: 0,
             rows_left: None,
-            // Small at first; grows to what the device manages in BAND_TARGET.
-            band_rows: 64,
+            bands: BandScheduler::new(INTERACTIVE_TARGET),
             in_flight: Arc::new(AtomicUsize::new(0)),
             timing: Arc::new(Mutex::new(BandTiming::default())),
             presented: false,
@@ -143,11 +141,13 @@ impl Accumulation {
         if self.in_flight.load(Ordering::Acquire) >= MAX_IN_FLIGHT {
             return Step::Waiting;
         }
-        let (_, height) = canvas.size();
-        self.adapt_band(height);
+        let (width, height) = canvas.size();
+        if let Some((rows, took)) = self.timing.lock().expect("never poisoned").last.take() {
+            self.bands.record(width, rows, took);
+        }
         let left = *self.rows_left.get_or_insert(height);
         let start = self.next_row.min(height - 1);
-        let rows = start..(start + self.band_rows.min(left)).min(height);
+        let rows = start..(start + self.bands.rows(width, left)).min(height);
         if self.samples == 0 {
             canvas.renderer().clear_rows(&canvas.prepared.buffers, rows.clone());
         }
@@ -173,17 +173,6 @@ impl Accumulation {
             self.rows_left = None;
         }
         Step::Traced
-    }
-
-    /// Sizes the next band so it keeps the device busy for about `BAND_TARGET`.
-    fn adapt_band(&mut self, height: u32) {
-        if let Some((rows, took)) = self.timing.lock().expect("never poisoned").last.take() {
-            let ideal = f64::from(rows) * BAND_TARGET.as_secs_f64() / took.as_secs_f64().max(1e-6);
-            // Grow gently, shrink at once; whole tiles of 8 rows.
-            let next = ideal.min(f64::from(self.band_rows) * 2.0) as u32 / 8 * 8;
-            self.band_rows = next.max(8);
-        }
-        self.band_rows = self.band_rows.clamp(8.min(height), height);
     }
 
     /// Collects ray counts that have arrived and asks for the next ones.

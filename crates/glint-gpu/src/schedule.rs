@@ -1,0 +1,91 @@
+//! How much of the image one dispatch traces: one policy for `glint render`,
+//! `glint bench` and the viewer. A dispatch should keep the device busy for
+//! about a target time, long enough to amortise the submission and short
+//! enough that no GPU watchdog fires and progress (or the UI) stays fluid.
+
+use std::time::Duration;
+
+/// The target of a batch render: long bands, few submissions.
+pub const BATCH_TARGET: Duration = Duration::from_millis(150);
+/// The target of an interactive render: the UI must stay responsive.
+pub const INTERACTIVE_TARGET: Duration = Duration::from_millis(30);
+
+/// Rows are traced in whole workgroups of this many.
+const TILE_ROWS: u32 = 8;
+/// The size of the first band, before anything has been measured.
+const FIRST_BAND_PIXELS: u32 = 8 * 512;
+
+/// Sizes bands from the time the last one took: towards the target in
+/// proportion, growing at most twofold per band and shrinking at once.
+#[derive(Debug, Clone, Copy)]
+pub struct BandScheduler {
+    target: Duration,
+    /// Pixels per band, so a size learnt at one image width carries to another.
+    pixels: u32,
+}
+
+impl BandScheduler {
+    pub const fn new(target: Duration) -> Self {
+        Self { target, pixels: FIRST_BAND_PIXELS }
+    }
+
+    /// The rows of the next band of an image `width` wide with `left` rows to
+    /// go: whole workgroups of rows, at least one workgroup, at most `left`.
+    pub fn rows(&self, width: u32, left: u32) -> u32 {
+        let rows = (self.pixels / width.max(1)) / TILE_ROWS * TILE_ROWS;
+        rows.max(TILE_ROWS).min(left).max(1)
+    }
+
+    /// Learns from a band of `rows` rows of an image `width` wide that kept
+    /// the device busy for `took`.
+    pub fn record(&mut self, width: u32, rows: u32, took: Duration) {
+        let pixels = f64::from(rows) * f64::from(width);
+        let ideal = pixels * self.target.as_secs_f64() / took.as_secs_f64().max(1e-6);
+        let next = ideal.min(f64::from(self.pixels) * 2.0).min(f64::from(u32::MAX));
+        self.pixels = (next as u32).max(TILE_ROWS * width.max(1));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const WIDTH: u32 = 512;
+
+    /// Bands of a device that traces `per_row` per row settle near the target.
+    fn settle(per_row: Duration, target: Duration) -> u32 {
+        let mut s = BandScheduler::new(target);
+        for _ in 0..20 {
+            let rows = s.rows(WIDTH, 100_000);
+            s.record(WIDTH, rows, per_row * rows);
+        }
+        s.rows(WIDTH, 100_000)
+    }
+
+    #[test]
+    fn bands_converge_to_the_target_time_in_whole_workgroups() {
+        let rows = settle(Duration::from_micros(500), BATCH_TARGET);
+        assert_eq!(rows % TILE_ROWS, 0);
+        assert!((288..=304).contains(&rows), "150 ms at 0.5 ms a row is 300 rows, got {rows}");
+        let rows = settle(Duration::from_micros(500), INTERACTIVE_TARGET);
+        assert!((56..=64).contains(&rows), "30 ms is 60 rows, got {rows}");
+    }
+
+    #[test]
+    fn growth_is_gentle_and_shrinking_immediate() {
+        let mut s = BandScheduler::new(BATCH_TARGET);
+        let first = s.rows(WIDTH, 10_000);
+        s.record(WIDTH, first, Duration::from_micros(1));
+        assert_eq!(s.rows(WIDTH, 10_000), 2 * first, "an instant band only doubles the next");
+        s.record(WIDTH, 2 * first, Duration::from_secs(10));
+        assert_eq!(s.rows(WIDTH, 10_000), TILE_ROWS, "a slow band shrinks the next to one workgroup");
+    }
+
+    #[test]
+    fn a_band_never_passes_the_rows_left_nor_is_empty() {
+        let s = BandScheduler::new(BATCH_TARGET);
+        assert_eq!(s.rows(WIDTH, 3), 3);
+        assert_eq!(s.rows(100_000, 5), 5, "a very wide image still gets one workgroup of rows");
+        assert_eq!(s.rows(0, 0), 1);
+    }
+}
