@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use glint_gpu::shaders::{imports, Kernel, ShaderSource, SOURCES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
-use glint_scene::gpu_types::{GpuCamera, GpuLight, GpuMaterial, GpuPrim, Globals, ResolveParams};
+use glint_scene::gpu_types::{DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ResolveParams, SceneUniforms};
 
 fn module(kernel: Kernel) -> naga::Module {
     ShaderSource::Embedded.compose(kernel).unwrap().validate().unwrap()
@@ -145,12 +145,12 @@ fn host_structs_match_wgsl() {
     layout!(m, GpuCamera { eye, projection, u, half_width, v, half_height, w, _pad });
     layout!(
         m,
-        Globals {
-            camera, background, width, ambient, height, depth_cue_color, light_count, depth_cue,
-            max_depth, cutoff, flags, view, tile_origin, sample_index, seed, sample_count, pixel_filter,
-            row_end, bvh_root
+        SceneUniforms {
+            camera, background, width, ambient, height, depth_cue_color, light_count, depth_cue, max_depth, cutoff,
+            flags, bvh_root
         }
     );
+    layout!(m, DispatchParams { origin, end, sample_index, seed, sample_count, pixel_filter, view, _pad0, _pad1, _pad2 });
     layout!(m, GpuLight { position, kind, radiance, attenuation, coefficients });
     layout!(
         m,

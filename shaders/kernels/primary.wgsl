@@ -7,11 +7,11 @@
 fn primary_view(eye: Ray) -> vec3<f32> {
     let hit = traverse(eye, 0.0, MISS, false, false);
     count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
-    if globals.view == VIEW_HEATMAP {
+    if dispatch.view == VIEW_HEATMAP {
         return vec3<f32>(f32(hit.nodes));
     }
     if hit.t == MISS {
-        switch globals.view {
+        switch dispatch.view {
             case VIEW_DEPTH: { return vec3<f32>(MISS); }
             case VIEW_ID: { return vec3<f32>(-1.0); }
             default: { return vec3<f32>(0.0); }
@@ -19,7 +19,7 @@ fn primary_view(eye: Ray) -> vec3<f32> {
     }
     let p = prims[hit.prim];
     let m = materials[prim_material(p)];
-    switch globals.view {
+    switch dispatch.view {
         case VIEW_NORMAL: { return surface_at(p, eye, hit.t).geometric; }
         case VIEW_DEPTH: { return vec3<f32>(hit.t); }
         case VIEW_ALBEDO: { return m.color; }

@@ -23,7 +23,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
         }
         if hit.t == MISS {
-            color += pending.weight * globals.background;
+            color += pending.weight * uniforms.background;
             continue;
         }
         let p = prims[hit.prim];
@@ -31,21 +31,21 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         let s = surface_at(p, ray, hit.t);
         let local = shade(s, m, -ray.dir);
         var weight = pending.weight;
-        if (globals.flags & FLAG_DEPTH_CUE) != 0u {
+        if (uniforms.flags & FLAG_DEPTH_CUE) != 0u {
             let so = depth_cue_scale(hit.t);
-            color += weight * (so * local + (1.0 - so) * globals.depth_cue_color);
+            color += weight * (so * local + (1.0 - so) * uniforms.depth_cue_color);
             weight *= so;
         } else {
             color += weight * local;
         }
-        if pending.depth >= globals.max_depth {
+        if pending.depth >= uniforms.max_depth {
             continue;
         }
 
         // Entering when the ray meets the front of the surface; the outside is air.
         let eta = select(1.0 / m.ior, m.ior, s.backface);
         var k_reflect = m.reflect;
-        var k_refract = select(vec3<f32>(0.0), m.transmit, (globals.flags & FLAG_REFRACTIONS) != 0u);
+        var k_refract = select(vec3<f32>(0.0), m.transmit, (uniforms.flags & FLAG_REFRACTIONS) != 0u);
         let refracted = refract_dir(ray.dir, s.shading, eta);
         if any(k_refract > vec3<f32>(0.0)) {
             if refracted.w == 0.0 {
@@ -63,19 +63,19 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         }
         // With reflections off no reflected ray is traced at all, including the
         // share that total internal reflection or Fresnel moved into it.
-        if (globals.flags & FLAG_REFLECTIONS) == 0u {
+        if (uniforms.flags & FLAG_REFLECTIONS) == 0u {
             k_reflect = vec3<f32>(0.0);
         }
         let eps = ray_epsilon(s.point);
         let w_reflect = weight * k_reflect;
-        if any(w_reflect > vec3<f32>(globals.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
+        if any(w_reflect > vec3<f32>(uniforms.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
             count_ray(STAT_REFLECT);
             let r = Ray(s.point + s.geometric * eps, reflect_dir(ray.dir, s.shading));
             stack[top] = PendingRay(r, w_reflect, pending.depth + 1u);
             top++;
         }
         let w_refract = weight * k_refract;
-        if any(w_refract > vec3<f32>(globals.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
+        if any(w_refract > vec3<f32>(uniforms.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
             count_ray(STAT_REFRACT);
             let r = Ray(s.point - s.geometric * eps, refracted.xyz);
             stack[top] = PendingRay(r, w_refract, pending.depth + 1u);

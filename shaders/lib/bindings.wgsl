@@ -1,7 +1,7 @@
 // Resources of the trace kernel, in bind group 0.
 // import: types
 
-@group(0) @binding(0) var<uniform> globals: Globals;
+@group(0) @binding(0) var<uniform> uniforms: SceneUniforms;
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
 @group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
 @group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
@@ -15,3 +15,5 @@
 @group(0) @binding(7) var<storage, read_write> stats: array<atomic<u32>>;
 // The grids of the BVH's interior records, for the nodes traversal returns to.
 @group(0) @binding(8) var<storage, read> grids: array<GpuGrid>;
+// The region and sample of the current dispatch.
+@group(0) @binding(9) var<uniform> dispatch: DispatchParams;

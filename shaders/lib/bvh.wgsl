@@ -81,7 +81,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     // per-axis min and max of the textbook slab test.
     let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), inv_dir < vec3<f32>(0.0));
     var top = 0u;
-    var index = globals.bvh_root;
+    var index = uniforms.bvh_root;
     // The root's grid (unused when the root is a leaf).
     var grid = stored_grid(0u);
     while index != NO_NODE {

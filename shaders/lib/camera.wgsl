@@ -4,8 +4,8 @@
 // import: bindings types
 
 fn camera_ray(pixel: vec2<f32>) -> Ray {
-    let cam = globals.camera;
-    let size = vec2<f32>(f32(globals.width), f32(globals.height));
+    let cam = uniforms.camera;
+    let size = vec2<f32>(f32(uniforms.width), f32(uniforms.height));
     let us = -cam.half_width + 2.0 * cam.half_width * pixel.x / size.x;
     let vs = cam.half_height - 2.0 * cam.half_height * pixel.y / size.y;
     if cam.projection == PROJECTION_ORTHOGRAPHIC {

@@ -10,18 +10,18 @@ fn count_ray(kind: u32) {
 
 // The pixel an invocation traces in the current band, if the band covers one.
 fn band_pixel(gid: vec3<u32>) -> vec2<u32> {
-    return gid.xy + globals.tile_origin;
+    return gid.xy + dispatch.origin;
 }
 
 fn in_band(pixel: vec2<u32>) -> bool {
-    return pixel.x < globals.width && pixel.y < min(globals.height, globals.row_end);
+    return all(pixel < dispatch.end);
 }
 
 // The first sample of a render writes its pixel (the sum starts from zero), so
 // it need not read it: a load per lane saved.
 fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
-    let index = pixel.y * globals.width + pixel.x;
-    if globals.sample_index == 0u {
+    let index = pixel.y * uniforms.width + pixel.x;
+    if dispatch.sample_index == 0u {
         accum[index] = vec4<f32>(color, 1.0);
     } else {
         accum[index] += vec4<f32>(color, 1.0);

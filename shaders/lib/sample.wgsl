@@ -24,17 +24,17 @@ fn tent(u: f32) -> f32 {
 }
 
 fn sample_offset(pixel: vec2<u32>) -> vec2<f32> {
-    if globals.sample_count == 1u {
+    if dispatch.sample_count == 1u {
         return vec2<f32>(0.5);
     }
-    let h = pcg_hash(pcg_hash(pcg_hash(globals.seed ^ pixel.x) ^ pixel.y) ^ globals.sample_index);
+    let h = pcg_hash(pcg_hash(pcg_hash(dispatch.seed ^ pixel.x) ^ pixel.y) ^ dispatch.sample_index);
     var u = vec2<f32>(unit_float(h), unit_float(pcg_hash(h)));
-    let k = u32(floor(sqrt(f32(globals.sample_count))));
-    if globals.sample_count > 1u && globals.sample_index < k * k {
-        let cell = vec2<f32>(f32(globals.sample_index % k), f32(globals.sample_index / k));
+    let k = u32(floor(sqrt(f32(dispatch.sample_count))));
+    if dispatch.sample_count > 1u && dispatch.sample_index < k * k {
+        let cell = vec2<f32>(f32(dispatch.sample_index % k), f32(dispatch.sample_index / k));
         u = (cell + u) / f32(k);
     }
-    if globals.pixel_filter == FILTER_TENT {
+    if dispatch.pixel_filter == FILTER_TENT {
         return vec2<f32>(0.5 + tent(u.x), 0.5 + tent(u.y));
     }
     return u;

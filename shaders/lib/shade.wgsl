@@ -34,8 +34,8 @@ fn specular_term(m: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> ve
 
 // `v` points from the surface towards the viewer.
 fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
-    var color = m.ka * globals.ambient * m.color;
-    for (var i = 0u; i < globals.light_count; i++) {
+    var color = m.ka * uniforms.ambient * m.color;
+    for (var i = 0u; i < uniforms.light_count; i++) {
         let light = lights[i];
         var l: vec3<f32>;
         var distance: f32;
@@ -66,7 +66,7 @@ fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
 
 // s_o at distance d: linear from near_scale at `near` to far_scale at `far`.
 fn depth_cue_scale(d: f32) -> f32 {
-    let dc = globals.depth_cue;
+    let dc = uniforms.depth_cue;
     let f = clamp((d - dc.x) / (dc.y - dc.x), 0.0, 1.0);
     return mix(dc.z, dc.w, f);
 }
@@ -78,7 +78,7 @@ fn depth_cue_scale(d: f32) -> f32 {
 // occluder opaque), and no ambient, specular, reflection or refraction.
 fn diffuse_only(s: Surface, m: GpuMaterial) -> vec3<f32> {
     var color = vec3<f32>(0.0);
-    for (var i = 0u; i < globals.light_count; i++) {
+    for (var i = 0u; i < uniforms.light_count; i++) {
         let light = lights[i];
         var l = -light.position;
         var distance = MISS;

@@ -4,12 +4,12 @@
 // import: bindings bvh dispatch primitive types
 
 fn light_visibility(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>, distance: f32) -> vec3<f32> {
-    if (globals.flags & FLAG_SHADOWS) == 0u {
+    if (uniforms.flags & FLAG_SHADOWS) == 0u {
         return vec3<f32>(1.0);
     }
     count_ray(STAT_SHADOW);
     let eps = ray_epsilon(point);
     let ray = Ray(point + geometric * eps, to_light);
-    let tinted = (globals.flags & FLAG_TINTED_SHADOWS) != 0u;
+    let tinted = (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
     return traverse(ray, 0.0, distance - eps, true, tinted).transmittance;
 }

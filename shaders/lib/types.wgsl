@@ -14,7 +14,8 @@ struct GpuCamera {
     _pad: f32,
 }
 
-struct Globals {
+// Written once per scene change.
+struct SceneUniforms {
     camera: GpuCamera,
     background: vec3<f32>,
     width: u32,
@@ -26,19 +27,26 @@ struct Globals {
     max_depth: u32,
     cutoff: f32,
     flags: u32,
-    view: u32,
-    tile_origin: vec2<u32>,
+    // The BVH record traversal starts from.
+    bvh_root: u32,
+}
+
+// Written before each dispatch: the region it covers and the sample it adds.
+struct DispatchParams {
+    origin: vec2<u32>,
+    // Exclusive: whole workgroups may reach past it.
+    end: vec2<u32>,
     sample_index: u32,
     seed: u32,
     // Samples per pixel of this render (stratified); 1 traces the pixel centre,
     // 0 means an open-ended progressive render (jittered, unstratified).
     sample_count: u32,
     pixel_filter: u32,
-    // The dispatch covers rows tile_origin.y .. row_end: whole workgroups may
-    // reach past it, and those rows belong to the next band.
-    row_end: u32,
-    // The BVH record traversal starts from.
-    bvh_root: u32,
+    // What the kernel writes per pixel (a VIEW_ constant).
+    view: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct GpuLight {

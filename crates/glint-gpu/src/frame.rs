@@ -56,8 +56,8 @@ impl Renderer {
         let gpu_bvh = bvh.gpu()?;
         let bvh_build = start.elapsed();
         let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
-        let globals = gpu_types::globals(scene, width, height, packed.light_count);
-        let buffers = self.upload(&packed, globals)?;
+        let uniforms = gpu_types::scene_uniforms(scene, width, height, packed.light_count, packed.bvh_root);
+        let buffers = self.upload(&packed, uniforms)?;
         let eye = scene.camera.eye;
         let depth_extent = bounds
             .iter()

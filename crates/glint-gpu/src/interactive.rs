@@ -7,8 +7,7 @@ use std::ops::Range;
 use std::sync::{Arc, Mutex};
 
 use bytemuck::Zeroable;
-use glam::Vec3;
-use glint_scene::gpu_types::{Globals, GpuLight, GpuMaterial, ResolveParams, View, PROJECTION_ORTHOGRAPHIC};
+use glint_scene::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParams, SceneUniforms, View};
 
 use crate::renderer::{create_pipeline, STAT_BYTES};
 use crate::shaders::{Kernel, ShaderSource};
@@ -50,23 +49,9 @@ impl SceneBuffers {
         self.height
     }
 
-    /// The per-frame settings the next dispatches use.
-    pub fn globals(&self) -> &Globals {
-        &self.globals
-    }
-
-    /// Replaces the per-frame settings (camera, background, ambient, flags,
-    /// depth cue, maximum depth) for the dispatches that follow. The image size
-    /// stays the one the buffers were made for, the light count the one
-    /// `write_lights` set and the BVH root the uploaded scene's.
-    pub fn set_globals(&mut self, globals: Globals) {
-        self.globals = Globals {
-            width: self.width,
-            height: self.height,
-            light_count: self.globals.light_count,
-            bvh_root: self.globals.bvh_root,
-            ..globals
-        };
+    /// The BVH record traversal starts from, for `gpu_types::scene_uniforms`.
+    pub fn bvh_root(&self) -> u32 {
+        self.bvh_root
     }
 
     /// How many lights the lights buffer holds.
@@ -168,6 +153,14 @@ impl Renderer {
         self.queue.submit([encoder.finish()]);
     }
 
+    /// Replaces the scene uniforms (camera, background, ambient, flags, depth
+    /// cue, maximum depth, light count) for the dispatches that follow; they
+    /// must be for the buffers' image size and BVH root.
+    pub fn write_uniforms(&self, scene: &SceneBuffers, uniforms: &SceneUniforms) {
+        debug_assert_eq!((uniforms.width, uniforms.height, uniforms.bvh_root), (scene.width, scene.height, scene.bvh_root));
+        self.queue.write_buffer(&scene.uniforms, 0, bytemuck::bytes_of(uniforms));
+    }
+
     /// Writes `materials` (packed in scene order) over the scene's materials.
     pub fn write_materials(&self, scene: &SceneBuffers, materials: &[GpuMaterial]) -> Result<(), GpuError> {
         if materials.len() > scene.material_capacity() {
@@ -183,7 +176,7 @@ impl Renderer {
 
     /// Replaces the scene's lights by `lights` (the enabled ones, packed), which
     /// must fit the buffer uploaded with the scene.
-    pub fn write_lights(&self, scene: &mut SceneBuffers, lights: &[GpuLight]) -> Result<(), GpuError> {
+    pub fn write_lights(&self, scene: &SceneBuffers, lights: &[GpuLight]) -> Result<(), GpuError> {
         if lights.len() > scene.light_capacity() {
             return Err(GpuError::Runtime(format!(
                 "{} lights do not fit the room for {} uploaded",
@@ -192,47 +185,21 @@ impl Renderer {
             )));
         }
         self.queue.write_buffer(&scene.lights, 0, bytemuck::cast_slice(lights));
-        scene.globals.light_count = lights.len() as u32;
         Ok(())
     }
 
-    /// The object whose surface the primary ray through image position (`x`,
-    /// `y`) hits first (pixels from the top-left corner, so a pixel's centre is
-    /// at i + 0.5), or `None` on a miss.
+    /// The object whose surface the primary ray through the centre of pixel
+    /// (`x`, `y`) hits first (from the top-left corner), or `None` on a miss.
     ///
-    /// The primary kernel runs in the object-id view on a one-pixel image whose
-    /// camera window shrinks to that ray. The pixel's value lands in the first
-    /// accumulation slot, which is saved before and restored after, so a
-    /// progressive render carries on undisturbed.
-    pub fn pick(&self, scene: &SceneBuffers, x: f32, y: f32) -> Result<Option<u32>, GpuError> {
-        let g = &scene.globals;
-        let c = &g.camera;
-        let us = -c.half_width + 2.0 * c.half_width * x / scene.width as f32;
-        let vs = c.half_height - 2.0 * c.half_height * y / scene.height as f32;
-        let (eye, u, v, w) = (Vec3::from(c.eye), Vec3::from(c.u), Vec3::from(c.v), Vec3::from(c.w));
-        // camera_ray gives origin eye' and direction normalize(−w') when the
-        // window has no extent; match the ray through (x, y) of the full image.
-        let (eye, w) = if c.projection == PROJECTION_ORTHOGRAPHIC {
-            (eye + us * u + vs * v, w)
-        } else {
-            (eye, w - us * u - vs * v)
-        };
-        let mut camera = *c;
-        camera.eye = eye.into();
-        camera.w = w.into();
-        camera.half_width = 0.0;
-        camera.half_height = 0.0;
-        let globals = Globals {
-            camera,
-            width: 1,
-            height: 1,
-            tile_origin: [0, 0],
-            sample_index: 0,
-            sample_count: 1,
-            view: View::Id as u32,
-            ..*g
-        };
-
+    /// The primary kernel runs in the object-id view over that one pixel. Its
+    /// accumulation slot is saved before and restored after, so a progressive
+    /// render carries on undisturbed.
+    pub fn pick(&self, scene: &SceneBuffers, x: u32, y: u32) -> Result<Option<u32>, GpuError> {
+        if x >= scene.width || y >= scene.height {
+            return Ok(None);
+        }
+        let slot = (u64::from(y) * u64::from(scene.width) + u64::from(x)) * PIXEL_BYTES;
+        let region = DispatchParams { origin: [x, y], end: [x + 1, y + 1], sample_count: 1, ..Zeroable::zeroed() };
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let saved = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("pick saved pixel"),
@@ -241,18 +208,11 @@ impl Renderer {
             mapped_at_creation: false,
         });
         let readback = self.readback_buffer(PIXEL_BYTES);
-        self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(&scene.accum, 0, &saved, 0, PIXEL_BYTES);
-        encoder.clear_buffer(&scene.accum, 0, Some(PIXEL_BYTES));
-        {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.primary);
-            pass.set_bind_group(0, &scene.scene_bind, &[]);
-            pass.dispatch_workgroups(1, 1, 1);
-        }
-        encoder.copy_buffer_to_buffer(&scene.accum, 0, &readback, 0, PIXEL_BYTES);
-        encoder.copy_buffer_to_buffer(&saved, 0, &scene.accum, 0, PIXEL_BYTES);
+        encoder.copy_buffer_to_buffer(&scene.accum, slot, &saved, 0, PIXEL_BYTES);
+        self.encode_dispatch(scene, View::Id, region, &mut encoder);
+        encoder.copy_buffer_to_buffer(&scene.accum, slot, &readback, 0, PIXEL_BYTES);
+        encoder.copy_buffer_to_buffer(&saved, 0, &scene.accum, slot, PIXEL_BYTES);
         self.queue.submit([encoder.finish()]);
         let bytes = self.read(&readback);
         if let Some(e) = pollster::block_on(scope.pop()) {

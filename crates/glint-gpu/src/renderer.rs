@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use glint_scene::gpu_types::{
-    Filter, Globals, GpuScene, ResolveParams, View, STAT_COUNT, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
+    DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
     STAT_REFRACT, STAT_SHADOW, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
 };
 use wgpu::util::DeviceExt;
@@ -125,8 +125,9 @@ pub struct Renderer {
 pub struct SceneBuffers {
     pub(crate) width: u32,
     pub(crate) height: u32,
-    pub(crate) globals: Globals,
-    pub(crate) globals_buffer: wgpu::Buffer,
+    pub(crate) bvh_root: u32,
+    pub(crate) uniforms: wgpu::Buffer,
+    pub(crate) dispatch: wgpu::Buffer,
     pub(crate) accum: wgpu::Buffer,
     pub(crate) stats: wgpu::Buffer,
     pub(crate) scene_bind: wgpu::BindGroup,
@@ -161,8 +162,8 @@ impl Renderer {
 
     /// Uploads `scene` for rendering at `width` × `height`, checking the device's
     /// buffer limits first.
-    pub fn upload(&self, scene: &GpuScene, globals: Globals) -> Result<SceneBuffers, GpuError> {
-        let (width, height) = (globals.width, globals.height);
+    pub fn upload(&self, scene: &GpuScene, uniforms: SceneUniforms) -> Result<SceneBuffers, GpuError> {
+        let (width, height) = (uniforms.width, uniforms.height);
         let limits = self.device.limits();
         let accum_bytes = u64::from(width) * u64::from(height) * 16;
         let arrays: [(&str, &[u8]); 7] = [
@@ -199,12 +200,15 @@ impl Renderer {
         let lights = storage("lights", arrays[3].1);
         let points = storage("points", arrays[4].1);
         let grids = storage("grids", arrays[5].1);
-        let globals = Globals { bvh_root: scene.bvh_root, ..globals };
-        let globals_buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("globals"),
-            contents: bytemuck::bytes_of(&globals),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let uniform = |label: &str, contents: &[u8]| {
+            self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        let uniforms_buffer = uniform("scene uniforms", bytemuck::bytes_of(&uniforms));
+        let dispatch = uniform("dispatch params", bytemuck::bytes_of(&DispatchParams::zeroed()));
         let accum = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accum"),
             size: accum_bytes,
@@ -217,7 +221,7 @@ impl Renderer {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let buffers = [&globals_buffer, &prims, &nodes, &materials, &lights, &points, &accum, &stats, &grids];
+        let buffers = [&uniforms_buffer, &prims, &nodes, &materials, &lights, &points, &accum, &stats, &grids, &dispatch];
         let entries: Vec<wgpu::BindGroupEntry> = buffers
             .iter()
             .enumerate()
@@ -229,7 +233,19 @@ impl Renderer {
             entries: &entries,
         });
         let scene_bytes = arrays[..6].iter().map(|(_, b)| b.len() as u64).sum();
-        Ok(SceneBuffers { width, height, globals, globals_buffer, accum, stats, scene_bind, materials, lights, scene_bytes })
+        Ok(SceneBuffers {
+            width,
+            height,
+            bvh_root: uniforms.bvh_root,
+            uniforms: uniforms_buffer,
+            dispatch,
+            accum,
+            stats,
+            scene_bind,
+            materials,
+            lights,
+            scene_bytes,
+        })
     }
 
     /// Renders `options.spp` samples per pixel and resolves them, calling
@@ -315,8 +331,7 @@ impl Renderer {
         Ok(stats)
     }
 
-    /// Sets the globals for sample `sample_index` over `rows` and records the
-    /// dispatch that traces them.
+    /// Records the dispatch that adds sample `sample_index` to `rows`.
     pub(crate) fn encode_band(
         &self,
         scene: &SceneBuffers,
@@ -325,21 +340,28 @@ impl Renderer {
         rows: std::ops::Range<u32>,
         encoder: &mut wgpu::CommandEncoder,
     ) {
-        let globals = Globals {
-            tile_origin: [0, rows.start],
-            row_end: rows.end,
+        let region = DispatchParams {
+            origin: [0, rows.start],
+            end: [scene.width, rows.end],
             sample_index,
             seed: options.seed,
             sample_count: options.spp,
             pixel_filter: options.filter as u32,
-            view: options.view as u32,
-            ..scene.globals
+            ..Zeroable::zeroed()
         };
-        self.queue.write_buffer(&scene.globals_buffer, 0, bytemuck::bytes_of(&globals));
+        self.encode_dispatch(scene, options.view, region, encoder);
+    }
+
+    /// Writes `region` with `view` and records the dispatch of the kernel that
+    /// view needs over it.
+    pub(crate) fn encode_dispatch(&self, scene: &SceneBuffers, view: View, region: DispatchParams, encoder: &mut wgpu::CommandEncoder) {
+        let region = DispatchParams { view: view as u32, ..region };
+        self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(if options.view.is_primary_only() { &self.primary } else { &self.trace });
+        pass.set_pipeline(if view.is_primary_only() { &self.primary } else { &self.trace });
         pass.set_bind_group(0, &scene.scene_bind, &[]);
-        pass.dispatch_workgroups(scene.width.div_ceil(8), rows.len().div_ceil(8) as u32, 1);
+        let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
+        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
     }
 
     /// Turns the accumulated samples into display values (tone mapped, sRGB)
@@ -445,9 +467,9 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
     pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
 }
 
-/// The resources of the trace and primary kernels (shaders/bindings.wgsl): the
-/// globals, five read-only scene arrays, the accumulation image, the ray counts
-/// and the BVH grids.
+/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl):
+/// the scene uniforms, five read-only scene arrays, the accumulation image, the
+/// ray counts, the BVH grids and the dispatch parameters.
 fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
         binding,
@@ -467,6 +489,7 @@ fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         buffer(6, read_write),
         buffer(7, read_write),
         buffer(8, read_only),
+        buffer(9, wgpu::BufferBindingType::Uniform),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
 }

@@ -171,10 +171,11 @@ pub struct GpuCamera {
     pub _pad: f32,
 }
 
-/// Per-frame settings, one uniform buffer.
+/// What the kernels know of the scene and its view: written once when the
+/// scene is uploaded and again only when the scene changes (the viewer's edits).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct Globals {
+pub struct SceneUniforms {
     pub camera: GpuCamera,
     pub background: [f32; 3],
     pub width: u32,
@@ -187,18 +188,27 @@ pub struct Globals {
     pub max_depth: u32,
     pub cutoff: f32,
     pub flags: u32,
-    pub view: u32,
-    /// Top-left pixel of the tile this dispatch covers.
-    pub tile_origin: [u32; 2],
+    /// The BVH record traversal starts from (`GpuScene::bvh_root`).
+    pub bvh_root: u32,
+}
+
+/// What one dispatch traces: written before each dispatch, and nothing else is.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct DispatchParams {
+    /// The first pixel (x, y) of the region the dispatch covers.
+    pub origin: [u32; 2],
+    /// The end (exclusive) of that region; whole workgroups may reach past it.
+    pub end: [u32; 2],
     pub sample_index: u32,
     pub seed: u32,
     /// Samples per pixel of the render (1: the pixel centre; 0: open-ended).
     pub sample_count: u32,
     pub pixel_filter: u32,
-    /// The last row (exclusive) of the band a dispatch covers.
-    pub row_end: u32,
-    /// The BVH record traversal starts from (`GpuScene::bvh_root`).
-    pub bvh_root: u32,
+    pub view: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
 
 #[repr(C)]
@@ -274,7 +284,7 @@ pub struct GpuScene {
     pub prims: Vec<GpuPrim>,
     pub nodes: Vec<GpuNode>,
     pub grids: Vec<GpuGrid>,
-    /// Where BVH traversal starts (`Globals::bvh_root`).
+    /// Where BVH traversal starts (`SceneUniforms::bvh_root`).
     pub bvh_root: u32,
     pub materials: Vec<GpuMaterial>,
     pub lights: Vec<GpuLight>,
@@ -409,8 +419,9 @@ pub fn pack_light(l: &crate::Light) -> GpuLight {
     GpuLight { position: position.into(), kind, radiance: l.radiance().into(), attenuation, coefficients }
 }
 
-/// The per-frame uniforms for rendering `scene` at `width` × `height`.
-pub fn globals(scene: &Scene, width: u32, height: u32, light_count: u32) -> Globals {
+/// The uniforms for rendering `scene` at `width` × `height` with `light_count`
+/// lights uploaded and traversal starting at `bvh_root`.
+pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, bvh_root: u32) -> SceneUniforms {
     let basis = scene.camera.basis().expect("scene loaders reject cameras without a basis");
     let (half_width, half_height) = scene.camera.half_extents(width, height);
     let projection = match scene.camera.projection {
@@ -438,7 +449,7 @@ pub fn globals(scene: &Scene, width: u32, height: u32, light_count: u32) -> Glob
         }
         None => ([0.0; 3], [0.0; 4]),
     };
-    Globals {
+    SceneUniforms {
         camera: GpuCamera {
             eye: scene.camera.eye.into(),
             projection,
@@ -459,13 +470,6 @@ pub fn globals(scene: &Scene, width: u32, height: u32, light_count: u32) -> Glob
         max_depth: r.max_depth,
         cutoff: r.cutoff,
         flags,
-        view: View::Shaded as u32,
-        tile_origin: [0, 0],
-        sample_index: 0,
-        seed: 0,
-        sample_count: 1,
-        pixel_filter: Filter::Box as u32,
-        row_end: height,
-        bvh_root: 0,
+        bvh_root,
     }
 }

@@ -35,7 +35,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
-use glint_scene::gpu_types::{globals, pack, primitive_bounds, GpuScene, BVH_STACK, LEAF, PRIM_POLYGON, PRIM_TRIANGLE, RIGHT_LEAF};
+use glint_scene::gpu_types::{pack, scene_uniforms, primitive_bounds, GpuScene, BVH_STACK, LEAF, PRIM_POLYGON, PRIM_TRIANGLE, RIGHT_LEAF};
 use glint_scene::scene::MAX_DEPTH_LIMIT;
 use glint_scene::toml_scene::MAX_IMAGE_SIDE;
 use glint_scene::{Attenuation, LightKind, LoadError, Projection, Scene, Shape};
@@ -1000,7 +1000,7 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     let gpu_bvh = bvh.gpu().map_err(|e| TestCaseError::fail(e.to_string()))?;
     let packed = pack(scene, &bvh.order, gpu_bvh);
     check_indices(&packed)?;
-    let g = globals(scene, scene.width, scene.height, packed.light_count);
+    let g = scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.bvh_root);
     let camera_values = [g.camera.u, g.camera.v, g.camera.w].concat();
     prop_assert!(
         camera_values.iter().chain([&g.camera.half_width, &g.camera.half_height]).all(|v| v.is_finite()),

@@ -619,9 +619,10 @@ impl ViewerApp {
         }
         let renderer = &canvas.kernels.renderer;
         renderer.write_materials(&canvas.prepared.buffers, &materials)?;
-        renderer.write_lights(&mut canvas.prepared.buffers, &lights)?;
-        let (w, h) = (canvas.prepared.buffers.width(), canvas.prepared.buffers.height());
-        canvas.prepared.buffers.set_globals(gpu_types::globals(scene, w, h, lights.len() as u32));
+        let buffers = &canvas.prepared.buffers;
+        renderer.write_lights(buffers, &lights)?;
+        let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), lights.len() as u32, buffers.bvh_root());
+        renderer.write_uniforms(buffers, &uniforms);
         self.acc.restart();
         Ok(true)
     }
@@ -707,6 +708,9 @@ impl ViewerApp {
             return;
         }
         let Some(canvas) = &self.canvas else { return };
+        // Negative positions (left of or above the image) are not a pixel.
+        let (x, y) = (x.floor().max(-1.0) as i64, y.floor().max(-1.0) as i64);
+        let (Ok(x), Ok(y)) = (u32::try_from(x), u32::try_from(y)) else { return };
         match canvas.renderer().pick(&canvas.prepared.buffers, x, y) {
             Ok(id) => self.selected_object = id.map(|i| i as usize),
             Err(e) => self.errors.gpu = Some(one_line(e)),

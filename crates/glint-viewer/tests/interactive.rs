@@ -158,7 +158,7 @@ fn present_writes_the_resolved_image_into_the_texture() {
 #[test]
 fn edits_in_place_equal_a_fresh_upload() {
     let mut edited = scene();
-    let mut buffers = upload(&edited);
+    let buffers = upload(&edited);
     edited.lights[0].kind = LightKind::Point { position: glam::Vec3::new(2.0, 4.0, 1.0) };
     edited.lights[1].enabled = false;
     edited.materials[1].color = glam::Vec3::new(0.1, 0.8, 0.2);
@@ -167,9 +167,9 @@ fn edits_in_place_equal_a_fresh_upload() {
 
     let lights: Vec<_> = edited.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
     let materials: Vec<_> = edited.materials.iter().map(gpu_types::pack_material).collect();
-    renderer().write_lights(&mut buffers, &lights).unwrap();
+    renderer().write_lights(&buffers, &lights).unwrap();
     renderer().write_materials(&buffers, &materials).unwrap();
-    buffers.set_globals(gpu_types::globals(&edited, edited.width, edited.height, lights.len() as u32));
+    renderer().write_uniforms(&buffers, &gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.bvh_root()));
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
 
@@ -179,7 +179,7 @@ fn edits_in_place_equal_a_fresh_upload() {
 
     // More lights than were uploaded is an error, not a silent overrun.
     let too_many = vec![lights[0]; buffers.light_capacity() + 1];
-    assert!(renderer().write_lights(&mut buffers, &too_many).is_err());
+    assert!(renderer().write_lights(&buffers, &too_many).is_err());
 }
 
 #[test]
@@ -195,7 +195,7 @@ fn picking_finds_each_pixel_s_object_and_leaves_the_image_alone() {
     let mut seen = std::collections::BTreeSet::new();
     for (x, y) in [(0, 0), (20, 20), (50, 30), (33, 2), (66, 40), (10, 35), (45, 22)] {
         let want = id_image.linear_at(x, y)[0];
-        let got = renderer().pick(&buffers, x as f32 + 0.5, y as f32 + 0.5).unwrap();
+        let got = renderer().pick(&buffers, x, y).unwrap();
         assert_eq!(got, (want >= 0.0).then_some(want as u32), "pixel ({x}, {y})");
         seen.insert(got);
     }
