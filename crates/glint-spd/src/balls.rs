@@ -96,13 +96,10 @@ fn child_directions() -> [Vec4; 9] {
 #[cfg(test)]
 mod tests {
     use super::generate;
-    use crate::Nff;
     use crate::nff_out::Counts;
 
     fn scene(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
     #[test]

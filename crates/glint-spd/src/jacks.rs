@@ -69,13 +69,10 @@ fn place(point: Vec4, transform: &Matrix) -> Vec4 {
 #[cfg(test)]
 mod tests {
     use super::generate;
-    use crate::Nff;
     use crate::nff_out::Counts;
 
     fn scene(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
     #[test]

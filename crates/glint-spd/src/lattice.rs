@@ -62,13 +62,10 @@ pub fn generate(size: u32, out: &mut Nff) {
 #[cfg(test)]
 mod tests {
     use super::generate;
-    use crate::Nff;
     use crate::nff_out::Counts;
 
     fn scene(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
     #[test]

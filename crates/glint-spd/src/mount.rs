@@ -149,16 +149,12 @@ fn gauss_rand(seed: i64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nff_out::count;
 
     fn text(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
-    fn count(text: &str, keyword: &str) -> usize {
-        text.lines().filter(|line| line.split(' ').next() == Some(keyword)).count()
-    }
 
     #[test]
     fn primitive_counts() {

@@ -130,6 +130,20 @@ impl Nff {
     }
 }
 
+/// The text `generate` writes at `size`, for the generators' tests.
+#[cfg(test)]
+pub fn generated(generate: fn(u32, &mut Nff), size: u32) -> String {
+    let mut out = Nff::new();
+    generate(size, &mut out);
+    out.finish()
+}
+
+/// How many lines of `text` start with `keyword`, for the generators' tests.
+#[cfg(test)]
+pub fn count(text: &str, keyword: &str) -> usize {
+    text.lines().filter(|line| line.split(' ').next() == Some(keyword)).count()
+}
+
 /// How many of each primitive a generated scene holds, for the generators' tests.
 #[cfg(test)]
 #[derive(Debug, PartialEq, Eq, Default)]

@@ -161,14 +161,11 @@ fn invert(m: &Matrix) -> Matrix {
 #[cfg(test)]
 mod tests {
     use super::{MAX_SIZE, generate, invert};
-    use crate::Nff;
     use crate::nff_out::Counts;
     use crate::vecmath;
 
     fn text(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
     #[test]

@@ -61,16 +61,12 @@ fn output_height(data: &[Vec<f32>], x: [f64; 2], y0: f64, z: [f64; 2], out: &mut
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nff_out::count;
 
     fn text(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
-    fn count(text: &str, keyword: &str) -> usize {
-        text.lines().filter(|line| line.split(' ').next() == Some(keyword)).count()
-    }
 
     #[test]
     fn primitive_counts() {

@@ -275,13 +275,10 @@ const VERTS: [Vec3; 290] = [
 #[cfg(test)]
 mod tests {
     use super::generate;
-    use crate::Nff;
     use crate::nff_out::Counts;
 
     fn text(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
     #[test]

@@ -65,13 +65,10 @@ fn tetrahedron(out: &mut Nff, depth: u32, center: Vec4) {
 #[cfg(test)]
 mod tests {
     use super::generate;
-    use crate::Nff;
     use crate::nff_out::Counts;
 
     fn scene(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
     #[test]

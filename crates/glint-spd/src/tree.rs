@@ -112,16 +112,12 @@ fn transform_point(v: [f64; 3], mx: &Matrix, radius: f64) -> Vec4 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nff_out::count;
 
     fn text(size: u32) -> String {
-        let mut out = Nff::new();
-        generate(size, &mut out);
-        out.finish()
+        crate::nff_out::generated(generate, size)
     }
 
-    fn count(text: &str, keyword: &str) -> usize {
-        text.lines().filter(|line| line.split(' ').next() == Some(keyword)).count()
-    }
 
     #[test]
     fn primitive_counts() {
