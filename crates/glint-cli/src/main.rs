@@ -1,10 +1,14 @@
 //! `glint`: render scenes on the GPU from the command line.
 
 mod bench;
+mod check;
+mod compare;
 mod info;
+mod legend;
 mod render;
 mod scene_arg;
 mod spd;
+mod test;
 mod view;
 
 use std::process::ExitCode;
@@ -13,6 +17,9 @@ use clap::{Parser, Subcommand};
 
 /// Exit codes, documented in README.md.
 pub mod exit {
+    /// `glint compare`: the images are not within the threshold; `glint
+    /// test`: a case failed.
+    pub const DIFFERENT: u8 = 1;
     /// The command line was wrong (clap's own code).
     pub const USAGE: u8 = 2;
     /// A scene file could not be read or is malformed.
@@ -21,6 +28,8 @@ pub mod exit {
     pub const GPU: u8 = 4;
     /// The output file could not be written.
     pub const OUTPUT: u8 = 5;
+    /// `glint view`: there is no display to open a window on.
+    pub const NO_DISPLAY: u8 = 6;
 }
 
 #[derive(Parser)]
@@ -34,6 +43,8 @@ struct Cli {
 enum Command {
     /// Render a scene to an image file.
     Render(render::RenderArgs),
+    /// Check scene files without a GPU: parse, validate and summarise them.
+    Check(check::CheckArgs),
     /// Show the GPU adapter Glint would use and its limits.
     Info,
     /// Measure BVH build, render times and ray throughput per scene.
@@ -42,6 +53,10 @@ enum Command {
     View(view::ViewArgs),
     /// Write one of the Standard Procedural Databases as an NFF file.
     Spd(spd::SpdArgs),
+    /// Compare two images (.png, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
+    Compare(compare::CompareArgs),
+    /// Render a suite of scenes and compare each with its golden image.
+    Test(test::TestArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -53,6 +68,12 @@ pub struct Failure {
 impl Failure {
     pub fn new(code: u8, message: impl std::fmt::Display) -> Self {
         Self { code, message: message.to_string() }
+    }
+
+    /// A failure the command has already reported on stdout (a comparison
+    /// that did not pass), so only the exit code remains.
+    pub fn explained(code: u8) -> Self {
+        Self { code, message: String::new() }
     }
 }
 
@@ -70,30 +91,35 @@ impl From<glint_gpu::GpuError> for Failure {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        // --help and --version print in full; a usage error is one line, like
-        // every other failure.
+        // --help and --version print in full.
         Err(e) if !e.use_stderr() => {
             let _ = e.print();
             return ExitCode::SUCCESS;
         }
+        // A usage error in full, as clap explains it (what is missing, the
+        // allowed values, a similar name), starting `glint:` like every failure.
         Err(e) => {
             let text = e.to_string();
-            let first = text.lines().next().unwrap_or_default();
-            eprintln!("glint: {}", first.strip_prefix("error: ").unwrap_or(first));
+            eprint!("glint: {}", text.strip_prefix("error: ").unwrap_or(&text));
             return ExitCode::from(exit::USAGE);
         }
     };
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
+        Command::Check(args) => check::run(&args),
         Command::Info => info::run(),
         Command::Bench(args) => bench::run(&args),
         Command::View(args) => view::run(args),
         Command::Spd(args) => spd::run(&args),
+        Command::Compare(args) => compare::run(&args),
+        Command::Test(args) => test::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
-            eprintln!("glint: {}", f.message);
+            if !f.message.is_empty() {
+                eprintln!("glint: {}", f.message);
+            }
             ExitCode::from(f.code)
         }
     }

@@ -22,14 +22,14 @@ pub struct RenderArgs {
     /// Output image: .png (display values), .exr or .pfm (linear float)
     #[arg(short, long)]
     output: PathBuf,
-    /// Image width in pixels (default: the scene's)
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
+    /// Image width in pixels (default: the scene's; alone, the scene's aspect ratio is kept)
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
     width: Option<u32>,
-    /// Image height in pixels (default: the scene's)
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
+    /// Image height in pixels (default: the scene's; alone, the scene's aspect ratio is kept)
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
     height: Option<u32>,
     /// Longest ray path, the eye ray counting as depth 1 (default: the scene's, else 5)
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_DEPTH_LIMIT)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_DEPTH_LIMIT)))]
     max_depth: Option<u32>,
     /// Trace every reflection and refraction ray to the maximum depth, however
     /// little it contributes (as classic benchmark procedures require)
@@ -40,7 +40,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = NffAngleArg::Centers)]
     nff_angle: NffAngleArg,
     /// Samples per pixel, stratified and jittered (1: through each pixel centre)
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=4096))]
     spp: u32,
     /// Seed of the sample jitter: the same seed gives the same image
     #[arg(long, default_value_t = 0)]
@@ -59,7 +59,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = BitsArg::Eight)]
     bits: BitsArg,
     /// Multiply linear radiance by this before tone mapping
-    #[arg(long, default_value_t = 1.0, value_parser = finite_positive)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true, value_parser = finite_positive)]
     exposure: f32,
     /// How radiance above 1 is brought into range
     #[arg(long, value_enum, default_value_t = ToneMapArg::Clamp)]
@@ -98,7 +98,8 @@ enum FilterArg {
 #[derive(Clone, Copy, Debug, PartialEq, ValueEnum)]
 enum ViewArg {
     Shaded,
-    Normals,
+    #[value(alias = "normals")]
+    Normal,
     Depth,
     Albedo,
     Diffuse,
@@ -110,7 +111,7 @@ impl ViewArg {
     fn view(self) -> View {
         match self {
             ViewArg::Shaded => View::Shaded,
-            ViewArg::Normals => View::Normal,
+            ViewArg::Normal => View::Normal,
             ViewArg::Depth => View::Depth,
             ViewArg::Albedo => View::Albedo,
             ViewArg::Diffuse => View::Diffuse,
@@ -124,10 +125,14 @@ fn parse_aov(s: &str) -> Result<(ViewArg, PathBuf), String> {
     let (name, path) = s.split_once('=').ok_or("expected NAME=PATH")?;
     let view = match name {
         "depth" => ViewArg::Depth,
-        "normal" => ViewArg::Normals,
+        "normal" | "normals" => ViewArg::Normal,
         "albedo" => ViewArg::Albedo,
         "id" => ViewArg::Id,
-        other => return Err(format!("unknown AOV `{other}`: expected depth, normal, albedo or id")),
+        other => {
+            let names = ["depth", "normal", "albedo", "id"];
+            let hint = glint_scene::suggest::nearest(other, names).map_or(String::new(), |n| format!(" (did you mean `{n}`?)"));
+            return Err(format!("unknown AOV `{other}`{hint}: the AOVs are depth, normal, albedo and id"));
+        }
     };
     let path = PathBuf::from(path);
     match Format::from_path(&path) {
@@ -146,13 +151,84 @@ enum ToneMapArg {
 fn finite_positive(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("`{s}` is not a positive finite number")),
+        Ok(_) => Err(format!("the exposure must be a positive number, found {s} (1 leaves the radiance as it is, 2 doubles it)")),
+        Err(_) => Err(format!("`{s}` is not a number: the exposure is a positive number such as 0.5 or 2")),
     }
 }
 
+/// Refuses, before any work, an output path whose format Glint cannot write
+/// (a usage error) or that cannot be created (the output code).
+fn check_output(path: &std::path::Path) -> Result<(), Failure> {
+    glint_gpu::check_output_path(path).map(|_| ()).map_err(|e| match e {
+        glint_gpu::OutputPathError::Format(m) => Failure::new(exit::USAGE, m),
+        glint_gpu::OutputPathError::Unwritable(m) => Failure::new(exit::OUTPUT, m),
+    })
+}
+
+/// The image size: both sides as given; one side alone keeps the scene's
+/// aspect ratio (the other side rounded to whole pixels); neither, the scene's.
+fn image_size(width: Option<u32>, height: Option<u32>, scene: (u32, u32)) -> Result<(u32, u32), Failure> {
+    let (sw, sh) = (f64::from(scene.0), f64::from(scene.1));
+    let other = |given: u32, ratio: f64, option: &str, missing: &str| -> Result<u32, Failure> {
+        let side = (f64::from(given) * ratio).round().max(1.0);
+        if side > f64::from(MAX_IMAGE_SIDE) {
+            return Err(Failure::new(
+                exit::USAGE,
+                format!(
+                    "--{option} {given} on this {}x{} scene would make the {missing} {side}, beyond {MAX_IMAGE_SIDE}: give --{missing} too",
+                    scene.0, scene.1
+                ),
+            ));
+        }
+        Ok(side as u32)
+    };
+    Ok(match (width, height) {
+        (Some(w), Some(h)) => (w, h),
+        (Some(w), None) => (w, other(w, sh / sw, "width", "height")?),
+        (None, Some(h)) => (other(h, sw / sh, "height", "width")?, h),
+        (None, None) => scene,
+    })
+}
+
+/// Options that the chosen view or sample count makes pointless, one warning each.
+fn option_warnings(args: &RenderArgs) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let view = args.view.view();
+    let name = args.view.to_possible_value().map_or(String::new(), |v| v.get_name().to_string());
+    if view.is_primary_only() {
+        let mut ignored = Vec::new();
+        if args.spp > 1 {
+            ignored.push(format!("--spp {}", args.spp));
+        }
+        if matches!(args.filter, FilterArg::Tent) {
+            ignored.push("--filter tent".to_string());
+        }
+        if !ignored.is_empty() {
+            warnings.push(format!(
+                "--view {name} traces one ray through each pixel centre, so {} {} ignored",
+                ignored.join(" and "),
+                if ignored.len() == 1 { "is" } else { "are" }
+            ));
+        }
+        let mapped = matches!(view, View::Normal | View::Depth | View::Id | View::Heatmap);
+        if mapped && (args.exposure != 1.0 || !matches!(args.tone_map, ToneMapArg::Clamp)) {
+            warnings.push(format!("--view {name} maps its values to colours itself, so --exposure and --tone-map are ignored"));
+        }
+    } else if args.spp == 1 && matches!(args.filter, FilterArg::Tent) {
+        warnings.push("--filter tent has no effect with one sample per pixel (the pixel centre): add --spp 4 or more".into());
+    }
+    warnings
+}
+
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
-    // Refuse an unwritable output format before doing any work.
-    Format::from_path(&args.output).map_err(|e| Failure::new(exit::USAGE, e))?;
+    // Refuse an output path that cannot be written before doing any work.
+    check_output(&args.output)?;
+    for (_, path) in &args.aov {
+        check_output(path)?;
+    }
+    for warning in option_warnings(args) {
+        eprintln!("glint: warning: {warning}");
+    }
 
     let load_options = glint_scene::LoadOptions {
         nff_angle: match args.nff_angle {
@@ -164,8 +240,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     for warning in &scene.warnings {
         eprintln!("glint: warning: {warning}");
     }
-    let width = args.width.unwrap_or(scene.width);
-    let height = args.height.unwrap_or(scene.height);
+    let (width, height) = image_size(args.width, args.height, (scene.width, scene.height))?;
     if let Some(d) = args.max_depth {
         scene.render.max_depth = d;
     }
@@ -211,22 +286,21 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     bar.finish_and_clear();
 
     // Every image is rendered before any is written, so a failure writes nothing.
-    let mut outputs: Vec<(Image, &PathBuf)> = vec![(image, &args.output)];
+    let image = if view == View::Depth { image.with_misses_at_infinity() } else { image };
+    let legend = crate::legend::legend(view, &image, options.view_scale, prepared.bvh_nodes, scene.objects.len());
+    let mut outputs: Vec<(Image, &PathBuf, View)> = vec![(image, &args.output, view)];
     for (aov, path) in &args.aov {
         let aov_view = aov.view();
         let aov_options = RenderOptions { view: aov_view, spp: 1, view_scale: prepared.view_scale(aov_view), ..options };
         let (image, _) = renderer.render(&prepared.buffers, &aov_options, &mut |_, _| {})?;
-        outputs.push((if aov_view == View::Depth { image.with_misses_at_infinity() } else { image }, path));
-    }
-    if view == View::Depth {
-        outputs[0].0 = outputs[0].0.clone().with_misses_at_infinity();
+        outputs.push((if aov_view == View::Depth { image.with_misses_at_infinity() } else { image }, path, aov_view));
     }
     let bits = match args.bits {
         BitsArg::Eight => PngBits::Eight,
         BitsArg::Sixteen => PngBits::Sixteen,
     };
-    for (image, path) in &outputs {
-        glint_gpu::write_image(image, path, bits)?;
+    for (image, path, view) in &outputs {
+        glint_gpu::write_image_channels(image, path, bits, crate::legend::channels(*view))?;
     }
 
     if !args.quiet {
@@ -239,6 +313,9 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             stats.total(),
             args.output.display()
         );
+        if let Some(legend) = legend {
+            eprintln!("glint: {legend}");
+        }
     }
     if args.stats {
         print_stats(&stats, args.json);
@@ -275,5 +352,24 @@ fn print_stats(stats: &RayStats, json: bool) {
         println!("reflection rays: {}", stats.reflect);
         println!("refraction rays: {}", stats.refract);
         println!("total:           {}", stats.total());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_given_side_keeps_the_aspect_ratio() {
+        let size = |w, h| image_size(w, h, (320, 240)).map_err(|f| f.message);
+        assert_eq!(size(Some(640), None), Ok((640, 480)));
+        assert_eq!(size(None, Some(120)), Ok((160, 120)));
+        assert_eq!(size(Some(100), Some(100)), Ok((100, 100)));
+        assert_eq!(size(None, None), Ok((320, 240)));
+        assert_eq!(size(Some(1), None), Ok((1, 1)), "never less than a pixel");
+        assert_eq!(image_size(Some(101), None, (640, 400)).map_err(|f| f.message), Ok((101, 63)), "rounded");
+        let e = image_size(None, Some(16384), (640, 400)).unwrap_err();
+        assert_eq!(e.code, exit::USAGE);
+        assert!(e.message.contains("give --width too"), "{}", e.message);
     }
 }

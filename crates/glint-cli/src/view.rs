@@ -1,22 +1,69 @@
 //! `glint view`: the interactive viewer.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Args;
 
 use crate::{exit, Failure};
 
-/// Opened when no scene is named, if it exists.
-const DEFAULT_SCENE: &str = "scenes/showcase.toml";
+/// The scene `glint view` opens when none is named: the showcase, built into
+/// the program so that it opens from any directory. It is plain TOML that
+/// names no other file.
+pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/showcase.toml");
+
+/// What the built-in default scene is called in the window and in messages.
+const DEFAULT_NAME: &str = "showcase.toml";
 
 #[derive(Args)]
 pub struct ViewArgs {
-    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]; default: scenes/showcase.toml when it exists
+    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]; default: the showcase, built in
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: Option<PathBuf>,
 }
 
+/// Why no window can be opened here, when that is clear before trying: on
+/// Linux and the BSDs, no X11 or Wayland display is named in the environment.
+fn missing_display() -> Option<String> {
+    if cfg!(any(target_os = "windows", target_os = "macos", target_os = "ios", target_os = "android")) {
+        return None;
+    }
+    let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty());
+    if set("DISPLAY") || set("WAYLAND_DISPLAY") || set("WAYLAND_SOCKET") {
+        return None;
+    }
+    Some(
+        "cannot open a window: there is no display (neither DISPLAY nor WAYLAND_DISPLAY is set); run `glint view` on a \
+desktop, or under `xvfb-run glint view`; `glint render` needs no display"
+            .into(),
+    )
+}
+
 pub fn run(args: ViewArgs) -> Result<(), Failure> {
-    let scene = args.scene.or_else(|| Path::new(DEFAULT_SCENE).is_file().then(|| DEFAULT_SCENE.into()));
-    glint_viewer::run(scene).map_err(|e| Failure::new(exit::GPU, e))
+    if let Some(message) = missing_display() {
+        return Err(Failure::new(exit::NO_DISPLAY, message));
+    }
+    let scene = match args.scene {
+        Some(path) => glint_viewer::Scene::File(path),
+        None => glint_viewer::Scene::BuiltIn { name: DEFAULT_NAME.into(), text: DEFAULT_SCENE },
+    };
+    glint_viewer::run_scene(scene).map_err(|e| match e {
+        glint_viewer::RunError::NoDisplay(message) => Failure::new(exit::NO_DISPLAY, message),
+        glint_viewer::RunError::Failed(e) => Failure::new(exit::GPU, e),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_scene_is_the_showcase_and_stands_alone() {
+        let on_disk = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/showcase.toml");
+        let from_disk = glint_scene::load(&on_disk).unwrap();
+        let built_in = glint_scene::toml_scene::parse(DEFAULT_SCENE, std::path::Path::new(DEFAULT_NAME)).unwrap();
+        assert_eq!(built_in, from_disk);
+        assert!(built_in.warnings.is_empty(), "{:?}", built_in.warnings);
+        // Nothing else to read: no meshes, no includes.
+        assert!(!DEFAULT_SCENE.contains("path"), "the built-in scene must not name other files");
+    }
 }

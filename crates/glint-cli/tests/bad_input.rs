@@ -222,7 +222,9 @@ fn an_existing_output_survives_each_kind_of_bad_input() {
 }
 
 /// Absurd values on the command line are refused by the argument parser, with
-/// the usage code, before any file is read or written.
+/// the usage code, before any file is read or written. A usage error is shown
+/// as clap explains it (first line `glint: …`, then the allowed values or the
+/// usage), not cut to one line.
 #[test]
 fn absurd_command_line_values_are_refused() {
     let scene = corpus_dir().join("../../scenes/showcase.toml");
@@ -241,6 +243,8 @@ fn absurd_command_line_values_are_refused() {
         (&["--width", "wide"], "--width"),
         (&["--exposure", "nan"], "--exposure"),
         (&["--exposure=-1"], "--exposure"),
+        (&["--exposure", "-1"], "must be a positive number"),
+        (&["--width", "-5"], "--width"),
         (&["--tone-map", "sepia"], "--tone-map"),
         (&["--aov", "depth=out.png"], "--aov"),
     ];
@@ -251,7 +255,9 @@ fn absurd_command_line_values_are_refused() {
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{extra:?}: {stderr}");
         assert!(stderr.contains(option), "{extra:?}: the message does not name {option}: {stderr}");
-        assert!(stderr.starts_with("glint: ") && stderr.trim_end().lines().count() == 1, "{extra:?}: not one line: {stderr}");
+        let first = stderr.lines().next().unwrap_or_default();
+        assert!(first.starts_with("glint: ") && first.contains(option), "{extra:?}: the first line does not name {option}: {stderr}");
+        assert!(stderr.contains("try '--help'"), "{extra:?}: not clap's full message: {stderr}");
         assert!(!stderr.contains("panicked"), "{extra:?}: {stderr}");
         assert!(entries(dir.path()).is_empty(), "{extra:?} created {:?}", entries(dir.path()));
     }

@@ -13,7 +13,10 @@ pub mod shaders;
 
 pub use device::{Gpu, ADAPTER_ENV};
 pub use frame::{Acceleration, Prepared};
-pub use output::{read_pfm, write_atomically, write_image, Format, Image, PngBits};
+pub use output::{
+    check_output_path, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
+    OutputPathError, PngBits,
+};
 pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
 
 /// Everything that can go wrong on the GPU side, one line each.

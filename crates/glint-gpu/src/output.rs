@@ -96,20 +96,97 @@ pub enum PngBits {
     Sixteen,
 }
 
+/// What an image's linear values are, which decides how many channels a
+/// float file gets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Channels {
+    /// Colour (radiance, albedo, normals): three channels, R, G and B.
+    #[default]
+    Rgb,
+    /// One number per pixel (depth, object id, nodes visited), the first
+    /// linear channel: a greyscale PFM (`Pf`), and an EXR with the one
+    /// channel named here. PNG output is unaffected.
+    Single(&'static str),
+}
+
 /// Writes `image` to `path` in the format its extension names, atomically
 /// (see [`write_atomically`]).
 pub fn write_image(image: &Image, path: &Path, bits: PngBits) -> Result<(), GpuError> {
+    write_image_channels(image, path, bits, Channels::Rgb)
+}
+
+/// [`write_image`], with float formats written with `channels`.
+pub fn write_image_channels(image: &Image, path: &Path, bits: PngBits, channels: Channels) -> Result<(), GpuError> {
     let format = Format::from_path(path)?;
     let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
     let mut bytes = std::io::Cursor::new(Vec::new());
-    match (format, bits) {
-        (Format::Png, PngBits::Eight) => image.to_rgb8().write_to(&mut bytes, image::ImageFormat::Png),
-        (Format::Png, PngBits::Sixteen) => image.to_rgb16().write_to(&mut bytes, image::ImageFormat::Png),
-        (Format::Exr, _) => image.to_rgb32f().write_to(&mut bytes, image::ImageFormat::OpenExr),
-        (Format::Pfm, _) => write_pfm(image, &mut bytes).map_err(image::ImageError::IoError),
+    match (format, bits, channels) {
+        (Format::Png, PngBits::Eight, _) => image.to_rgb8().write_to(&mut bytes, image::ImageFormat::Png),
+        (Format::Png, PngBits::Sixteen, _) => image.to_rgb16().write_to(&mut bytes, image::ImageFormat::Png),
+        (Format::Exr, _, Channels::Rgb) => image.to_rgb32f().write_to(&mut bytes, image::ImageFormat::OpenExr),
+        (Format::Exr, _, Channels::Single(name)) => {
+            write_exr_channel(image, name, &mut bytes).map_err(|e| image::ImageError::IoError(std::io::Error::other(e)))
+        }
+        (Format::Pfm, _, channels) => write_pfm(image, channels, &mut bytes).map_err(image::ImageError::IoError),
     }
     .map_err(|e| fail(&e))?;
     write_atomically(path, bytes.get_ref()).map_err(|e| fail(&e))
+}
+
+/// An EXR with one 32-bit float channel `name`, the image's first linear channel.
+fn write_exr_channel(image: &Image, name: &str, w: &mut std::io::Cursor<Vec<u8>>) -> exr::error::UnitResult {
+    use exr::prelude as x;
+    let values: Vec<f32> = image.linear.iter().map(|p| p[0]).collect();
+    let channel = x::AnyChannel::new(name, x::FlatSamples::F32(values));
+    let layer = x::Layer::new(
+        (image.width as usize, image.height as usize),
+        x::LayerAttributes::default(),
+        x::Encoding::FAST_LOSSLESS,
+        x::AnyChannels::sort(vec![channel].into()),
+    );
+    x::WritableImage::write(&x::Image::from_layer(layer)).to_buffered(w)
+}
+
+/// Checks, before any work, that an image can be written to `path`: its
+/// format is known, its directory exists and a file can be created there, and
+/// it is not itself a directory. Leaves nothing behind.
+pub fn check_output_path(path: &Path) -> Result<Format, OutputPathError> {
+    let format = Format::from_path(path).map_err(|e| OutputPathError::Format(e.to_string()))?;
+    let shown = path.display();
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if path.is_dir() {
+        return Err(OutputPathError::Unwritable(format!("{shown}: is a directory, not a file name")));
+    }
+    if !dir.is_dir() {
+        let what = if dir.exists() { "is not a directory" } else { "does not exist" };
+        return Err(OutputPathError::Unwritable(format!("{shown}: cannot write there: the directory `{}` {what}", dir.display())));
+    }
+    tempfile::Builder::new()
+        .prefix(".glint-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| OutputPathError::Unwritable(format!("{shown}: cannot write in the directory `{}`: {e}", dir.display())))?;
+    Ok(format)
+}
+
+/// Why [`check_output_path`] refused a path.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum OutputPathError {
+    /// An extension Glint does not write.
+    Format(String),
+    /// The file cannot be created.
+    Unwritable(String),
+}
+
+impl std::fmt::Display for OutputPathError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OutputPathError::Format(m) | OutputPathError::Unwritable(m) => f.write_str(m),
+        }
+    }
 }
 
 /// Writes `bytes` beside `path` under a temporary name and renames the file into
@@ -131,12 +208,17 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     Ok(())
 }
 
-/// PFM: a text header, then little-endian floats, rows from the bottom up.
-fn write_pfm(image: &Image, w: &mut impl Write) -> std::io::Result<()> {
-    write!(w, "PF\n{} {}\n-1.0\n", image.width, image.height)?;
+/// PFM: a text header (`PF` for colour, `Pf` for greyscale), then
+/// little-endian floats, rows from the bottom up.
+fn write_pfm(image: &Image, channels: Channels, w: &mut impl Write) -> std::io::Result<()> {
+    let (magic, count) = match channels {
+        Channels::Rgb => ("PF", 3),
+        Channels::Single(_) => ("Pf", 1),
+    };
+    write!(w, "{magic}\n{} {}\n-1.0\n", image.width, image.height)?;
     for y in (0..image.height).rev() {
         for x in 0..image.width {
-            for c in image.linear_at(x, y) {
+            for c in &image.linear_at(x, y)[..count] {
                 w.write_all(&c.to_le_bytes())?;
             }
         }
@@ -144,9 +226,9 @@ fn write_pfm(image: &Image, w: &mut impl Write) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Reads a colour PFM written by `write_pfm` (or any little- or big-endian `PF`
-/// file): (width, height, rgb rows top first).
-pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
+/// Reads a PFM, colour (`PF`) or greyscale (`Pf`), little- or big-endian:
+/// (width, height, channels per pixel, values row by row, top row first).
+pub fn read_pfm_channels(bytes: &[u8]) -> Result<(u32, u32, usize, Vec<f32>), String> {
     let mut fields = Vec::new();
     let mut pos = 0;
     while fields.len() < 4 {
@@ -163,13 +245,16 @@ pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
         fields.push(std::str::from_utf8(&bytes[start..pos]).map_err(|e| e.to_string())?.to_string());
     }
     pos += 1; // the single whitespace byte after the scale
-    if fields[0] != "PF" {
-        return Err(format!("not a colour PFM: {}", fields[0]));
-    }
+    let channels = match fields[0].as_str() {
+        "PF" => 3,
+        "Pf" => 1,
+        other => return Err(format!("not a PFM: {other}")),
+    };
     let width: u32 = fields[1].parse().map_err(|_| "bad PFM width")?;
     let height: u32 = fields[2].parse().map_err(|_| "bad PFM height")?;
     let little = fields[3].parse::<f32>().map_err(|_| "bad PFM scale")? < 0.0;
-    let count = width as usize * height as usize * 3;
+    let row = width as usize * channels;
+    let count = row * height as usize;
     let data = bytes.get(pos..pos + count * 4).ok_or("truncated PFM data")?;
     let floats: Vec<f32> = data
         .chunks_exact(4)
@@ -178,12 +263,90 @@ pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
             if little { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
         })
         .collect();
-    let mut rows = Vec::with_capacity(count / 3);
-    for y in (0..height as usize).rev() {
-        for x in 0..width as usize {
-            let i = (y * width as usize + x) * 3;
-            rows.push([floats[i], floats[i + 1], floats[i + 2]]);
-        }
+    let values = floats.chunks_exact(row.max(1)).rev().flatten().copied().collect();
+    Ok((width, height, channels, values))
+}
+
+/// Reads a PFM as colour: a greyscale file's value fills all three channels.
+/// (width, height, rgb rows top first).
+pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
+    let (width, height, channels, values) = read_pfm_channels(bytes)?;
+    let rgb = if channels == 1 {
+        values.iter().map(|&v| [v; 3]).collect()
+    } else {
+        values.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+    };
+    Ok((width, height, rgb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(values: &[f32], width: u32) -> Image {
+        let linear: Vec<[f32; 4]> = values.iter().map(|&v| [v, v + 0.5, v + 0.25, 1.0]).collect();
+        Image { width, height: (values.len() as u32) / width, display: linear.clone(), linear }
     }
-    Ok((width, height, rows))
+
+    #[test]
+    fn single_channel_pfm_is_greyscale_and_reads_back() {
+        let img = image(&[1.0, 2.0, 3.0, 4.0, 5.0, f32::INFINITY], 3);
+        let mut bytes = Vec::new();
+        write_pfm(&img, Channels::Single("Z"), &mut bytes).unwrap();
+        assert!(bytes.starts_with(b"Pf\n3 2\n-1.0\n"));
+        assert_eq!(bytes.len(), b"Pf\n3 2\n-1.0\n".len() + 6 * 4, "one float per pixel");
+        let (w, h, channels, values) = read_pfm_channels(&bytes).unwrap();
+        assert_eq!((w, h, channels), (3, 2, 1));
+        assert_eq!(values, [1.0, 2.0, 3.0, 4.0, 5.0, f32::INFINITY], "top row first");
+        let (_, _, rgb) = read_pfm(&bytes).unwrap();
+        assert_eq!(rgb[4], [5.0; 3]);
+    }
+
+    #[test]
+    fn colour_pfm_keeps_three_channels() {
+        let img = image(&[1.0, 2.0], 1);
+        let mut bytes = Vec::new();
+        write_pfm(&img, Channels::Rgb, &mut bytes).unwrap();
+        assert!(bytes.starts_with(b"PF\n1 2\n"));
+        let (_, _, rgb) = read_pfm(&bytes).unwrap();
+        assert_eq!(rgb, [[1.0, 1.5, 1.25], [2.0, 2.5, 2.25]]);
+    }
+
+    #[test]
+    fn single_channel_exr_has_one_named_channel() {
+        let img = image(&[1.0, -1.0, 7.0, f32::INFINITY], 2);
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        write_exr_channel(&img, "Z", &mut bytes).unwrap();
+        use exr::prelude::traits::*;
+        let read = exr::prelude::read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(bytes.into_inner()))
+            .unwrap();
+        let channels = &read.layer_data.channel_data.list;
+        assert_eq!(channels.len(), 1);
+        assert_eq!(channels[0].name.to_string(), "Z");
+        let values: Vec<f32> = channels[0].sample_data.values_as_f32().collect();
+        assert_eq!(values, [1.0, -1.0, 7.0, f32::INFINITY]);
+    }
+
+    #[test]
+    fn output_paths_are_checked_without_leaving_files() {
+        let dir = tempfile::tempdir().unwrap();
+        assert_eq!(check_output_path(&dir.path().join("a.png")), Ok(Format::Png));
+        assert!(matches!(check_output_path(&dir.path().join("a.bmp")), Err(OutputPathError::Format(_))));
+        let e = check_output_path(&dir.path().join("nodir/a.png")).unwrap_err().to_string();
+        assert!(e.contains("a.png") && e.contains("does not exist"), "{e}");
+        std::fs::write(dir.path().join("file"), b"").unwrap();
+        let e = check_output_path(&dir.path().join("file/a.png")).unwrap_err().to_string();
+        assert!(e.contains("is not a directory"), "{e}");
+        std::fs::create_dir(dir.path().join("d.png")).unwrap();
+        let e = check_output_path(&dir.path().join("d.png")).unwrap_err().to_string();
+        assert!(e.contains("is a directory"), "{e}");
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(left.len(), 2, "only the file and the directory made here: {left:?}");
+    }
 }

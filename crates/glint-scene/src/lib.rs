@@ -15,8 +15,10 @@ pub mod obj;
 pub mod scene;
 pub mod shape;
 pub mod spd;
+pub mod suggest;
 #[cfg(test)]
 mod test_rng;
+mod toml_errors;
 pub mod toml_scene;
 pub mod toml_write;
 pub mod validate;

@@ -429,6 +429,10 @@ impl<'a> Parser<'a> {
                         let tok = self.tokens[self.pos - 1];
                         return Err(self.error(&tok, format!("angle: {a} is not between 0 and 180 degrees")));
                     }
+                    if let Some(warning) = crate::toml_scene::radians_warning("angle", a) {
+                        let tok = self.tokens[self.pos - 1];
+                        self.warn(&tok, warning);
+                    }
                     angle = Some((a, t));
                 }
                 "hither" => hither = Some(self.non_negative("hither")?),
@@ -631,6 +635,14 @@ mod tests {
         assert_eq!(s.ambient, Vec3::splat(0.5), "no lights: as if there were one");
         assert_eq!(s.render, RenderSettings::default());
         assert!(s.objects.is_empty() && s.lights.is_empty() && s.warnings.is_empty());
+    }
+
+    #[test]
+    fn an_angle_that_looks_like_radians_warns() {
+        let s = parse(&VIEW.replace("angle 45", "angle 0.7"), Path::new("r.nff"), &NffOptions::default()).unwrap();
+        let w: Vec<String> = s.warnings.iter().map(ToString::to_string).collect();
+        assert_eq!(w, ["r.nff:5:7: angle: 0.7° is a very narrow view; angles are in degrees (0.7 radians is 40.1)"]);
+        assert!(parse_str("").unwrap().warnings.is_empty());
     }
 
     #[test]

@@ -24,6 +24,7 @@
 //! An error in the reference (a missing file, a bad transform) names the TOML
 //! line; an error inside the OBJ, MTL or NFF file names that file.
 
+use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -37,7 +38,7 @@ use crate::scene::MAX_DEPTH_LIMIT;
 use crate::icosphere;
 use crate::spd;
 use crate::shape::{polygon_non_planarity, polygon_normal};
-use crate::{nff, obj, ReadError};
+use crate::{nff, obj, toml_errors, ReadError};
 use crate::{
     Attenuation, Camera, DepthCue, Light, LightKind, LoadError, Location, Material, Object,
     Projection, RenderSettings, Scene, ShadowMode, Shape, SpecularModel,
@@ -56,26 +57,78 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
 
 /// Parses TOML scene text; `path` names the file in errors.
 pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
-    let file: FileDef = toml::from_str(source).map_err(|e| toml_error(source, path, &e))?;
-    Builder { source, path }.build(file)
+    let file: FileDef = toml::from_str(source).map_err(|e| toml_errors::explain(source, path, &e, &SCHEMA))?;
+    Builder { source, path, warnings: RefCell::new(Vec::new()) }.build(file)
 }
 
-fn toml_error(source: &str, path: &Path, e: &toml::de::Error) -> LoadError {
-    let message = e.message().trim().replace('\n', " ");
-    let Some(span) = e.span() else {
-        return LoadError::new(path, None, message);
+/// The tables and keys of the format, for errors about unknown keys.
+const SCHEMA: toml_errors::Schema = toml_errors::Schema { fields: schema_fields, object_keys };
+
+fn schema_fields(path: &[&str]) -> Option<&'static [&'static str]> {
+    use toml_errors::fields_of;
+    Some(match path {
+        [] => fields_of::<FileDef>(),
+        ["image"] => fields_of::<ImageDef>(),
+        ["camera"] => fields_of::<CameraDef>(),
+        ["ambient"] => fields_of::<AmbientDef>(),
+        ["render"] => fields_of::<RenderDef>(),
+        ["depth_cue"] => fields_of::<DepthCueDef>(),
+        ["light"] => fields_of::<LightDef>(),
+        ["material", _] => fields_of::<MaterialDef>(),
+        ["object"] => fields_of::<ObjectDef>(),
+        ["include"] => fields_of::<IncludeDef>(),
+        _ => return None,
+    })
+}
+
+/// The keys an object of type `kind` takes besides `type` and `material`.
+fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
+    Some(match kind {
+        "sphere" => &["center", "radius"],
+        "triangle" => &["vertices", "normals"],
+        "polygon" => &["vertices"],
+        "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
+        "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
+        "icosphere" => &["center", "radius", "subdivisions", "displacement"],
+        _ => return None,
+    })
+}
+
+/// A field of view of at most π "degrees" was probably written in radians.
+pub(crate) fn radians_warning(key: &str, degrees: f32) -> Option<String> {
+    (degrees > 0.0 && degrees <= std::f32::consts::PI).then(|| {
+        format!("{key}: {degrees}° is a very narrow view; angles are in degrees ({degrees} radians is {:.1})", degrees.to_degrees())
+    })
+}
+
+/// A warning for a colour with a component above 1. `reflectance`: a colour
+/// that must lie in [0, 1] (a material's); otherwise light, which may be
+/// brighter than 1 and is warned about only when it looks like 0–255 values.
+fn colour_warning(key: &str, c: Vec3, reflectance: bool) -> Option<String> {
+    if c.max_element() <= 1.0 {
+        return None;
+    }
+    let whole = c.to_array().iter().all(|v| v.fract() == 0.0 && *v <= 255.0);
+    if !reflectance && !whole {
+        return None;
+    }
+    let short = |v: f32| {
+        let s = format!("{:.2}", (v * 100.0).round() / 100.0);
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
     };
-    let location = Location::of_offset(source, span.start);
-    // Name the key whose value was wrong: the text before '=' on that line.
-    let line_text = source.lines().nth(location.line - 1).unwrap_or("");
-    let key = line_text.split_once('=').map(|(k, _)| k.trim()).filter(|k| {
-        !k.is_empty() && !k.starts_with('[') && !message.contains(&format!("`{k}`"))
-    });
-    let message = match key {
-        Some(key) => format!("{key}: {message}"),
-        None => message,
+    let shown = |c: Vec3| {
+        if c.x == c.y && c.y == c.z {
+            short(c.x)
+        } else {
+            format!("[{}, {}, {}]", short(c.x), short(c.y), short(c.z))
+        }
     };
-    LoadError::new(path, Some(location), message)
+    let brightness = if reflectance { "" } else { " (set the brightness with `intensity`)" };
+    Some(if whole {
+        format!("{key}: {} looks like 0–255 values, but colours are 0 to 1{brightness}; did you mean {}?", shown(c), shown(c / 255.0))
+    } else {
+        format!("{key}: {} is above 1, but a material's colours are 0 to 1: it would reflect more light than arrives", shown(c))
+    })
 }
 
 /// A finite number.
@@ -218,7 +271,7 @@ struct IncludeDef {
 struct ImageDef {
     width: Spanned<i64>,
     height: Spanned<i64>,
-    background: Option<Rgb>,
+    background: Option<Spanned<Rgb>>,
 }
 
 #[derive(Deserialize)]
@@ -236,7 +289,7 @@ struct CameraDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct AmbientDef {
-    color: Option<Rgb>,
+    color: Option<Spanned<Rgb>>,
     intensity: Option<Spanned<Num>>,
 }
 
@@ -254,7 +307,7 @@ struct RenderDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct DepthCueDef {
-    color: Rgb,
+    color: Spanned<Rgb>,
     near: Num,
     far: Num,
     near_scale: Option<Spanned<Num>>,
@@ -268,7 +321,7 @@ struct LightDef {
     kind: Spanned<String>,
     position: Option<V3>,
     direction: Option<V3>,
-    color: Option<Rgb>,
+    color: Option<Spanned<Rgb>>,
     intensity: Option<Spanned<Num>>,
     attenuation: Option<Spanned<String>>,
     coefficients: Option<Spanned<V3>>,
@@ -278,16 +331,16 @@ struct LightDef {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct MaterialDef {
-    color: Rgb,
+    color: Spanned<Rgb>,
     ka: Option<Spanned<Num>>,
     kd: Option<Spanned<Num>>,
     ks: Option<Spanned<Num>>,
     shininess: Option<Spanned<Num>>,
-    specular_color: Option<Rgb>,
+    specular_color: Option<Spanned<Rgb>>,
     model: Option<Spanned<String>>,
-    metallic: Option<Rgb>,
-    reflect: Option<Rgb>,
-    transmit: Option<Rgb>,
+    metallic: Option<Spanned<Rgb>>,
+    reflect: Option<Spanned<Rgb>>,
+    transmit: Option<Spanned<Rgb>>,
     ior: Option<Spanned<Num>>,
     fresnel: Option<bool>,
 }
@@ -332,11 +385,31 @@ struct CachedMesh {
 struct Builder<'a> {
     source: &'a str,
     path: &'a Path,
+    /// Problems in this file that do not stop loading, with their offsets.
+    warnings: RefCell<Vec<(usize, LoadError)>>,
 }
 
 impl Builder<'_> {
     fn error_at<T>(&self, spanned: &Spanned<T>, message: impl Into<String>) -> LoadError {
         LoadError::new(self.path, Some(Location::of_offset(self.source, spanned.span().start)), message)
+    }
+
+    fn warn_at<T>(&self, spanned: &Spanned<T>, message: impl Into<String>) {
+        self.warnings.borrow_mut().push((spanned.span().start, self.error_at(spanned, message)));
+    }
+
+    /// A colour's value, with a warning when it is out of its usual range
+    /// (see [`colour_warning`]).
+    fn colour(&self, c: &Spanned<Rgb>, key: &str, reflectance: bool) -> Vec3 {
+        let value = c.get_ref().0;
+        if let Some(warning) = colour_warning(key, value, reflectance) {
+            self.warn_at(c, warning);
+        }
+        value
+    }
+
+    fn optional_colour(&self, c: &Option<Spanned<Rgb>>, key: &str, reflectance: bool) -> Option<Vec3> {
+        c.as_ref().map(|c| self.colour(c, key, reflectance))
     }
 
     /// A number that must lie in `range`, reported at its own position.
@@ -354,7 +427,7 @@ impl Builder<'_> {
         let ambient = match &file.ambient {
             None => Vec3::ZERO,
             Some(a) => {
-                let ambient = a.color.map_or(Vec3::ONE, |c| c.0) * self.ranged(&a.intensity, "intensity", 1.0, 0.0, f32::MAX)?;
+                let ambient = self.optional_colour(&a.color, "color", false).unwrap_or(Vec3::ONE) * self.ranged(&a.intensity, "intensity", 1.0, 0.0, f32::MAX)?;
                 self.no_overflow(&a.intensity, ambient)?
             }
         };
@@ -376,7 +449,10 @@ impl Builder<'_> {
         for o in &file.object {
             self.object(o, &names, &mut materials, &mut meshes, &mut objects)?;
         }
-        let mut warnings = meshes.warnings;
+        // This file's own warnings in file order, then those of the files it names.
+        let mut warnings: Vec<(usize, LoadError)> = self.warnings.take();
+        warnings.sort_by_key(|(offset, _)| *offset);
+        let mut warnings: Vec<LoadError> = warnings.into_iter().map(|(_, w)| w).chain(meshes.warnings).collect();
         for include in &file.include {
             self.include(include, &mut materials, &mut objects, &mut lights, &mut warnings)?;
         }
@@ -534,7 +610,8 @@ impl Builder<'_> {
                 .filter(|s| (1..=MAX_IMAGE_SIDE).contains(s))
                 .ok_or_else(|| self.error_at(v, format!("{key}: {} is outside 1..={MAX_IMAGE_SIDE}", v.get_ref())))
         };
-        Ok((side(&def.width, "width")?, side(&def.height, "height")?, def.background.map_or(Vec3::ZERO, |c| c.0)))
+        let background = self.optional_colour(&def.background, "background", false).unwrap_or(Vec3::ZERO);
+        Ok((side(&def.width, "width")?, side(&def.height, "height")?, background))
     }
 
     fn camera(&self, camera: &Spanned<CameraDef>) -> Result<Camera, LoadError> {
@@ -549,6 +626,9 @@ impl Builder<'_> {
                 let fov_y_degrees = fov.get_ref().0;
                 if !(fov_y_degrees > 0.0 && fov_y_degrees < 180.0) {
                     return Err(self.error_at(fov, format!("fov: {fov_y_degrees} is not between 0 and 180 degrees")));
+                }
+                if let Some(warning) = radians_warning("fov", fov_y_degrees) {
+                    self.warn_at(fov, warning);
                 }
                 Projection::Perspective { fov_y_degrees }
             }
@@ -610,7 +690,7 @@ impl Builder<'_> {
             return Err(self.error_at(cue, "depth_cue: `far` must be greater than `near`"));
         }
         Ok(DepthCue {
-            color: def.color.0,
+            color: self.colour(&def.color, "color", false),
             near: def.near.0,
             far: def.far.0,
             near_scale: self.ranged(&def.near_scale, "near_scale", 1.0, 0.0, 1.0)?,
@@ -662,7 +742,7 @@ impl Builder<'_> {
         if let (Some(c), Attenuation::None | Attenuation::InverseSquare) = (&def.coefficients, attenuation) {
             return Err(self.error_at(c, "coefficients: only polynomial attenuation takes coefficients"));
         }
-        let color = def.color.map_or(Vec3::ONE, |c| c.0);
+        let color = self.optional_colour(&def.color, "color", false).unwrap_or(Vec3::ONE);
         let intensity = self.ranged(&def.intensity, "intensity", 1.0, 0.0, f32::MAX)?;
         self.no_overflow(&def.intensity, color * intensity)?;
         Ok(Light { kind, color, intensity, attenuation, enabled: def.enabled.unwrap_or(true) })
@@ -695,12 +775,12 @@ impl Builder<'_> {
             diffuse: self.ranged(&def.kd, "kd", d.diffuse, 0.0, f32::MAX)?,
             specular: self.ranged(&def.ks, "ks", d.specular, 0.0, f32::MAX)?,
             shininess: self.ranged(&def.shininess, "shininess", d.shininess, 0.0, 1e6)?,
-            color: def.color.0,
-            specular_color: def.specular_color.map(|c| c.0),
+            color: self.colour(&def.color, "color", true),
+            specular_color: self.optional_colour(&def.specular_color, "specular_color", true),
             specular_model,
-            metallic_f0: def.metallic.map(|c| c.0),
-            reflect: def.reflect.map_or(Vec3::ZERO, |c| c.0),
-            transmit: def.transmit.map_or(Vec3::ZERO, |c| c.0),
+            metallic_f0: self.optional_colour(&def.metallic, "metallic", true),
+            reflect: self.optional_colour(&def.reflect, "reflect", true).unwrap_or(Vec3::ZERO),
+            transmit: self.optional_colour(&def.transmit, "transmit", true).unwrap_or(Vec3::ZERO),
             ior: self.ranged(&def.ior, "ior", 1.0, 0.01, 100.0)?,
             fresnel: def.fresnel.unwrap_or(false),
         })
@@ -725,19 +805,11 @@ impl Builder<'_> {
         };
         let material = named.unwrap_or(0);
         let kind = def.kind.get_ref().as_str();
-        let allowed: &[&str] = match kind {
-            "sphere" => &["center", "radius"],
-            "triangle" => &["vertices", "normals"],
-            "polygon" => &["vertices"],
-            "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
-            "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
-            "icosphere" => &["center", "radius", "subdivisions", "displacement"],
-            other => {
-                return Err(self.error_at(
-                    &def.kind,
-                    format!("type: unknown object type `{other}`, expected sphere, triangle, polygon, cone, cylinder, mesh or icosphere"),
-                ));
-            }
+        let Some(allowed) = object_keys(kind) else {
+            return Err(self.error_at(
+                &def.kind,
+                format!("type: unknown object type `{kind}`, expected sphere, triangle, polygon, cone, cylinder, mesh or icosphere"),
+            ));
         };
         let present = [
             ("center", def.center.is_some()),
@@ -1003,12 +1075,12 @@ base_radius = 0.5
 
     #[test]
     fn points_need_exactly_three_numbers() {
-        for (center, needle) in [("[0, 0, 0, 1]", "invalid length 4"), ("[0, 0]", "invalid length 2"), ("[0, 0, 1e39]", "32-bit")] {
+        for (center, needle) in [("[0, 0, 0, 1]", "array of 3 numbers, found 4 values"), ("[0, 0]", "found 2 values"), ("[0, 0, 1e39]", "32-bit")] {
             let e = error(&format!("[[object]]\ntype = \"sphere\"\ncenter = {center}\nradius = 1\n"));
             assert!(e.starts_with("test.toml:12:10:") && e.contains(needle), "{center}: {e}");
         }
         let e = error("[[object]]\ntype = \"polygon\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0, 7]]\n");
-        assert!(e.starts_with("test.toml:12:") && e.contains("invalid length 4"), "{e}");
+        assert!(e.starts_with("test.toml:12:") && e.contains("found 4 values"), "{e}");
     }
 
     #[test]
@@ -1039,6 +1111,106 @@ base_radius = 0.5
         assert!(e.starts_with("test.toml:14:13:") && e.contains("overflows"), "{e}");
         let e = error("[ambient]\ncolor = 3e38\nintensity = 3e38\n");
         assert!(e.starts_with("test.toml:12:13:") && e.contains("overflows"), "{e}");
+    }
+
+    #[test]
+    fn type_errors_are_in_plain_words() {
+        for (extra, want) in [
+            ("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = \"big\"\n", "test.toml:13:10: radius: expected a number, found the string \"big\""),
+            ("[render]\nmax_depth = 3.0\n", "test.toml:11:13: max_depth: expected a whole number, found 3.0 (write 3, without the decimal point)"),
+            ("[render]\nshadows = 1\n", "test.toml:11:11: shadows: expected `true` or `false`, found 1"),
+            ("[[object]]\ntype = 3\n", "test.toml:11:8: type: expected a string in quotes, found 3"),
+            ("[[object]]\ntype = \"sphere\"\ncenter = 1\nradius = 1\n", "test.toml:12:10: center: expected an array, found 1"),
+        ] {
+            let e = error(extra);
+            assert_eq!(e, want);
+            assert!(!e.contains("f64") && !e.contains("i64") && !e.contains("invalid type"), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_table_of_the_wrong_kind_is_explained() {
+        let e = error("[object]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n");
+        assert_eq!(e, "test.toml:10:2: [object] is a single table: write [[object]] (an array of tables) for each object");
+        let e = error("[light]\ntype = \"point\"\nposition = [0, 0, 0]\n");
+        assert!(e.starts_with("test.toml:10:") && e.contains("write [[light]]"), "{e}");
+        let src = MINIMAL.replace("[camera]", "[[camera]]");
+        let e = parse(&src, Path::new("t.toml")).unwrap_err().to_string();
+        assert!(e.starts_with("t.toml:6:") && e.contains("a scene has one camera: write [camera]"), "{e}");
+        let e = error("[material]\ncolor = [1, 0, 0]\n");
+        assert!(e.starts_with("test.toml:11:1:") && e.contains("write [material.NAME]"), "{e}");
+        let e = error("[[material]]\ncolor = [1, 0, 0]\n");
+        assert!(e.starts_with("test.toml:10:") && e.contains("[material.red]"), "{e}");
+    }
+
+    #[test]
+    fn an_unclosed_array_is_reported_where_it_opens() {
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0\nradius = 1\n");
+        assert_eq!(e, "test.toml:12:10: center: this array is not closed: a `]` is missing");
+        // At the end of the file too.
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0,\n");
+        assert!(e.starts_with("test.toml:12:10:") && e.contains("not closed"), "{e}");
+        // A comma missing inside a multi-line array is a missing comma, where it is.
+        let e = error("[[object]]\ntype = \"polygon\"\nvertices = [\n  [0, 0, 0]\n  [1, 0, 0],\n  [0, 1, 0],\n]\n");
+        assert!(e.starts_with("test.toml:14:") && e.contains("missing comma"), "{e}");
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0 0 0]\nradius = 1\n");
+        assert_eq!(e, "test.toml:12:10: center: the values of an array are separated by commas: write [0, 0, 0]");
+    }
+
+    #[test]
+    fn unknown_keys_name_the_first_in_the_file_and_the_nearest_valid_key() {
+        // `zenter` comes before `radus` in the file, though not in the alphabet.
+        let e = error("[[object]]\ntype = \"sphere\"\nzenter = [0, 0, 0]\nradus = 1\n");
+        assert_eq!(e, "test.toml:12:1: unknown key `zenter` in a sphere object; did you mean `center`?");
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradus = 1\n");
+        assert_eq!(e, "test.toml:13:1: unknown key `radus` in a sphere object; did you mean `radius`?");
+        // The keys of that type of object only, not all seventeen.
+        let e = error("[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nwobble = 2\n");
+        assert_eq!(e, "test.toml:14:1: unknown key `wobble` in a sphere object, which takes `type`, `material`, `center`, `radius`");
+        // Across tables: [image] comes first in the file, [camera] in the alphabet.
+        let src = MINIMAL.replace("height = 24", "heigth = 24").replace("fov = 40", "fov = 40\nfvo = 3");
+        let e = parse(&src, Path::new("t.toml")).unwrap_err().to_string();
+        assert_eq!(e, "t.toml:4:1: unknown key `heigth` in [image]; did you mean `height`?");
+        for (extra, want) in [
+            ("[[objects]]\ntype = \"sphere\"\n", "test.toml:10:3: unknown table [[objects]]; did you mean [[object]]?"),
+            ("[render]\nspp = 4\n", "test.toml:11:1: unknown key `spp` in [render]: `spp` is a command-line option (glint render --spp …), not a scene key"),
+            (
+                "[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\ncolor = [1, 0, 0]\n",
+                "test.toml:14:1: unknown key `color` in a sphere object: `color` belongs to a material; define it in [material.NAME] and give the object `material = \"NAME\"`",
+            ),
+            ("[ambient]\nfov = 3\n", "test.toml:11:1: unknown key `fov` in [ambient]: `fov` belongs in [camera]"),
+            ("[[light]]\ntype = \"point\"\npostion = [0, 0, 0]\n", "test.toml:12:1: unknown key `postion` in a point light; did you mean `position`?"),
+            ("[material.red]\ncolour = 1\n", "test.toml:11:1: unknown key `colour` in [material.red]; did you mean `color`?"),
+        ] {
+            assert_eq!(error(extra), want);
+        }
+    }
+
+    fn warnings(src: &str) -> Vec<String> {
+        parse(src, Path::new("w.toml")).unwrap().warnings.iter().map(ToString::to_string).collect()
+    }
+
+    #[test]
+    fn colours_written_0_to_255_and_radian_angles_warn() {
+        let w = warnings(&format!("{MINIMAL}[material.red]\ncolor = [230, 50, 25]\n"));
+        assert_eq!(w, ["w.toml:11:9: color: [230, 50, 25] looks like 0–255 values, but colours are 0 to 1; did you mean [0.9, 0.2, 0.1]?"]);
+        let w = warnings(&format!("{MINIMAL}[material.white]\ncolor = 1.5\nreflect = [0.5, 0.5, 2]\n"));
+        assert_eq!(w.len(), 2, "{w:?}");
+        assert!(w[0].starts_with("w.toml:11:9: color: 1.5 is above 1"), "{w:?}");
+        assert!(w[1].starts_with("w.toml:12:11: reflect: [0.5, 0.5, 2] is above 1"), "{w:?}");
+        // Light may be brighter than 1; only 0–255 values are suspicious there.
+        let light = |c: &str| format!("{MINIMAL}[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\ncolor = {c}\n");
+        assert!(warnings(&light("[1.0, 0.9, 2.5]")).is_empty());
+        let w = warnings(&light("[255, 255, 255]"));
+        assert_eq!(w, ["w.toml:13:9: color: 255 looks like 0–255 values, but colours are 0 to 1 (set the brightness with `intensity`); did you mean 1?"]);
+        let w = warnings(&MINIMAL.replace("fov = 40", "fov = 0.5"));
+        assert_eq!(w, ["w.toml:9:7: fov: 0.5° is a very narrow view; angles are in degrees (0.5 radians is 28.6)"]);
+        assert!(warnings(MINIMAL).is_empty());
+        assert!(warnings(&MINIMAL.replace("fov = 40", "fov = 3.5")).is_empty());
+        // In file order, whatever the order of checking.
+        let src = format!("{}[material.a]\ncolor = [0, 0, 9]\n", MINIMAL.replace("[image]", "[image]\nbackground = [200, 200, 200]").replace("fov = 40", "fov = 1"));
+        let lines: Vec<String> = warnings(&src).iter().map(|w| w.split(':').nth(1).unwrap().to_string()).collect();
+        assert_eq!(lines, ["3", "10", "12"]);
     }
 
     #[test]

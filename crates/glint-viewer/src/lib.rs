@@ -21,8 +21,46 @@ use std::sync::Arc;
 
 pub use app::{StartError, ViewerApp, ViewerOptions};
 
+/// What the viewer opens.
+pub enum Scene {
+    /// Nothing: a scene is opened from the window.
+    None,
+    /// A scene file (or `spd:NAME[:SIZE]`), reloaded when it changes.
+    File(PathBuf),
+    /// TOML text built into the program, called `name`.
+    BuiltIn { name: PathBuf, text: &'static str },
+}
+
+/// Why the viewer could not run.
+#[derive(Debug)]
+pub enum RunError {
+    /// There is no display to open a window on (no X11 or Wayland server).
+    NoDisplay(String),
+    /// Anything else: the GPU, or the viewer itself.
+    Failed(StartError),
+}
+
+impl std::fmt::Display for RunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RunError::NoDisplay(m) => f.write_str(m),
+            RunError::Failed(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
 /// Opens the viewer window on `scene` and returns when it is closed.
 pub fn run(scene: Option<PathBuf>) -> Result<(), StartError> {
+    run_scene(scene.map_or(Scene::None, Scene::File)).map_err(|e| match e {
+        RunError::NoDisplay(m) => StartError(m),
+        RunError::Failed(e) => e,
+    })
+}
+
+/// [`run`], telling a missing display apart from other failures.
+pub fn run_scene(scene: Scene) -> Result<(), RunError> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("Glint")
@@ -33,9 +71,52 @@ pub fn run(scene: Option<PathBuf>) -> Result<(), StartError> {
         wgpu_options: egui_wgpu::WgpuConfiguration { wgpu_setup: wgpu_setup(), ..Default::default() },
         ..Default::default()
     };
-    let options = ViewerOptions::new(scene);
-    eframe::run_native("glint", native, Box::new(|cc| Ok(Box::new(ViewerApp::new(cc, options)?))))
-        .map_err(|e| StartError(app::one_line(e)))
+    let options = match scene {
+        Scene::None => ViewerOptions::new(None),
+        Scene::File(path) => ViewerOptions::new(Some(path)),
+        Scene::BuiltIn { name, text } => ViewerOptions { scene_text: Some(text), ..ViewerOptions::new(Some(name)) },
+    };
+    eframe::run_native("glint", native, Box::new(|cc| Ok(Box::new(ViewerApp::new(cc, options)?)))).map_err(|e| match e {
+        // The event loop could not start: no window system to talk to. winit's
+        // message names its own source file; say what it means instead.
+        eframe::Error::WinitEventLoop(e) => RunError::NoDisplay(format!(
+            "cannot open a window: no display could be reached ({}); run `glint view` on a desktop, \
+or under `xvfb-run glint view`",
+            without_source_paths(&e.to_string()).trim_start_matches("os error").trim()
+        )),
+        e => RunError::Failed(StartError(without_source_paths(&app::one_line(e)))),
+    })
+}
+
+/// `message` without the "at /path/to/file.rs:123" that some errors carry.
+fn without_source_paths(message: &str) -> String {
+    let words: Vec<&str> = message.split_whitespace().collect();
+    let mut kept = Vec::new();
+    let mut i = 0;
+    while i < words.len() {
+        let is_source = |w: &str| w.contains(".rs:") || w.contains("/.cargo/") || w.contains("/registry/src/");
+        if words[i] == "at" && words.get(i + 1).is_some_and(|w| is_source(w)) {
+            i += 2;
+            continue;
+        }
+        if is_source(words[i]) {
+            i += 1;
+            continue;
+        }
+        kept.push(words[i]);
+        i += 1;
+    }
+    kept.join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn source_paths_are_left_out_of_messages() {
+        let m = "os error at /root/.cargo/registry/src/index.crates.io-1949cf8c6b5b557f/winit-0.30.13/src/platform_impl/linux/mod.rs:765: \
+neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set.";
+        assert_eq!(super::without_source_paths(m), "os error neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set.");
+    }
 }
 
 /// How eframe opens its device for Glint: an adapter chosen as `glint render`

@@ -1,0 +1,122 @@
+//! One line per debug view saying what its pixels mean: the quantity, its
+//! units and the range the picture maps to colour, with the range found in
+//! this image. README.md's "Debug views" table gives the same formulas.
+
+use glint_gpu::{Channels, Image};
+use glint_scene::gpu_types::View;
+
+/// The linear values of the first channel at the pixels where the eye ray hit
+/// something, as (min, max, mean); `None` when it hit nothing anywhere.
+fn hit_range(image: &Image, hit: impl Fn(f32) -> bool) -> Option<(f32, f32, f64)> {
+    let values: Vec<f32> = image.linear.iter().map(|p| p[0]).filter(|&v| hit(v)).collect();
+    if values.is_empty() {
+        return None;
+    }
+    let min = values.iter().copied().fold(f32::INFINITY, f32::min);
+    let max = values.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    let mean = values.iter().map(|&v| f64::from(v)).sum::<f64>() / values.len() as f64;
+    Some((min, max, mean))
+}
+
+/// A number with about three significant digits.
+fn short(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1000.0 || v.abs() < 0.01) {
+        return format!("{v:.3e}");
+    }
+    let s = format!("{v:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// What the float outputs of `view` hold: one channel for the data views that
+/// are one number per pixel, with its EXR channel name (documented in README.md).
+pub fn channels(view: View) -> Channels {
+    match view {
+        View::Depth => Channels::Single("Z"),
+        View::Id => Channels::Single("id"),
+        View::Heatmap => Channels::Single("nodes"),
+        _ => Channels::Rgb,
+    }
+}
+
+/// The legend of `view` for `image`, or `None` for the shaded render.
+/// `scale` is the view scale the image was resolved with, `bvh_nodes` and
+/// `objects` the scene's counts.
+pub fn legend(view: View, image: &Image, scale: f32, bvh_nodes: usize, objects: usize) -> Option<String> {
+    let nothing = "the eye rays hit nothing";
+    Some(match view {
+        View::Shaded => return None,
+        View::Normal => "normal: the unit geometric normal N, turned towards the eye, as the colour 0.5 + 0.5·N \
+(x → red, y → green, z → blue: (0.5, 1, 0.5) faces up); misses black"
+            .into(),
+        View::Depth => {
+            let range = hit_range(image, f32::is_finite)
+                .map_or(nothing.into(), |(min, max, _)| format!("nearest hit {}, farthest {}", short(min.into()), short(max.into())));
+            format!(
+                "depth: distance t along the eye ray in scene units, white at 0 to black at {} (the farthest corner \
+of the scene's bounds); misses black (+inf in .pfm/.exr); {range}",
+                short(scale.into())
+            )
+        }
+        View::Albedo => "albedo: the diffuse colour O_d of the material hit, unlit; misses black".into(),
+        View::Diffuse => {
+            let brightest = image.linear.iter().map(|p| p[0].max(p[1]).max(p[2])).fold(0.0, f32::max);
+            let mut text = format!(
+                "diffuse: direct diffuse light Σ k_d·O_d·I_l·max(0, N·L)·V/d² over the lights, d the distance to \
+each light in scene units (always 1/d², whatever the scene's attenuation; d = 1 for a directional light), no \
+ambient, highlights or mirrors; brightest value {}",
+                short(brightest.into())
+            );
+            if brightest > 0.0 && brightest < 0.25 {
+                let exposure = (1.0 / f64::from(brightest)).round().max(2.0);
+                text.push_str(&format!(": try --exposure {exposure} to see it"));
+            }
+            text
+        }
+        View::Id => {
+            let mut visible: Vec<i64> = image.linear.iter().map(|p| p[0]).filter(|&v| v >= 0.0).map(|v| v as i64).collect();
+            visible.sort_unstable();
+            visible.dedup();
+            format!(
+                "id: object index, 0 to {} in file order ({objects} objects), one colour each; misses black (-1 in \
+.pfm/.exr); {} objects seen",
+                objects.saturating_sub(1),
+                visible.len()
+            )
+        }
+        View::Heatmap => {
+            let range = hit_range(image, |_| true)
+                .map_or(nothing.into(), |(min, max, mean)| format!("this image {} to {}, mean {}", short(min.into()), short(max.into()), short(mean)));
+            format!(
+                "heatmap: BVH nodes visited by each eye ray, blue at 0 through green to red at {} (2·log2 of the \
+{bvh_nodes} nodes + 8) and beyond; {range}",
+                short(scale.into())
+            )
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(values: &[f32]) -> Image {
+        let linear: Vec<[f32; 4]> = values.iter().map(|&v| [v, v, v, 1.0]).collect();
+        Image { width: values.len() as u32, height: 1, display: linear.clone(), linear }
+    }
+
+    #[test]
+    fn legends_state_the_range_and_units() {
+        let depth = legend(View::Depth, &image(&[2.0, f32::INFINITY, 5.5]), 12.0, 9, 3).unwrap();
+        assert!(depth.contains("scene units") && depth.contains("black at 12") && depth.contains("nearest hit 2, farthest 5.5"), "{depth}");
+        let id = legend(View::Id, &image(&[-1.0, 0.0, 2.0, 2.0]), 1.0, 9, 3).unwrap();
+        assert!(id.contains("0 to 2 in file order (3 objects)") && id.contains("2 objects seen"), "{id}");
+        let heat = legend(View::Heatmap, &image(&[3.0, 7.0]), 14.3, 41, 3).unwrap();
+        assert!(heat.contains("red at 14.3") && heat.contains("41 nodes") && heat.contains("this image 3 to 7, mean 5"), "{heat}");
+        let diffuse = legend(View::Diffuse, &image(&[0.0, 0.02]), 1.0, 9, 3).unwrap();
+        assert!(diffuse.contains("1/d²") && diffuse.contains("brightest value 0.02: try --exposure 50"), "{diffuse}");
+        assert!(legend(View::Shaded, &image(&[1.0]), 1.0, 9, 3).is_none());
+        for view in [View::Normal, View::Depth, View::Albedo, View::Diffuse, View::Id, View::Heatmap] {
+            assert_eq!(legend(view, &image(&[0.5]), 1.0, 9, 3).unwrap().lines().count(), 1);
+        }
+    }
+}

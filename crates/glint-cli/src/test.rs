@@ -1,0 +1,63 @@
+//! `glint test [MANIFEST.toml | DIR]`: render every case of a suite, compare
+//! each with its golden image, print one line per case and close with
+//! `N passed, N failed`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use glint_golden::{Bless, RunOptions, Suite, Summary};
+use glint_gpu::shaders::ShaderSource;
+use glint_gpu::{Gpu, Renderer};
+
+use crate::{exit, Failure};
+
+#[derive(Args)]
+pub struct TestArgs {
+    /// A manifest (.toml), or a directory whose scene files each have their
+    /// golden NAME.png beside them
+    #[arg(default_value = ".")]
+    suite: PathBuf,
+    /// Run only this case (repeatable); with --bless, its golden is rewritten
+    /// even when it passes
+    #[arg(long = "case", value_name = "NAME")]
+    cases: Vec<String>,
+    /// Write the goldens that are missing or failing
+    #[arg(long)]
+    bless: bool,
+    /// Also write the results as JUnit XML
+    #[arg(long, value_name = "FILE.xml")]
+    junit: Option<PathBuf>,
+    /// Also write an HTML report, with reference, render and diff of each
+    /// failing case, as DIR/index.html
+    #[arg(long, value_name = "DIR")]
+    report: Option<PathBuf>,
+}
+
+pub fn run(args: &TestArgs) -> Result<(), Failure> {
+    let suite = Suite::load(&args.suite).map_err(|e| Failure::new(exit::INPUT, e))?;
+    let cases = suite.select(&args.cases).map_err(|e| Failure::new(exit::USAGE, e))?;
+    let gpu = Gpu::new()?;
+    if let Some(warning) = gpu.driver_warning() {
+        eprintln!("glint: {warning}");
+    }
+    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+    let bless = match (args.bless, args.cases.is_empty()) {
+        (false, _) => Bless::No,
+        (true, true) => Bless::MissingOrFailing,
+        (true, false) => Bless::All,
+    };
+    let options = RunOptions { bless, report_images: args.report.is_some() };
+    let outcomes = glint_golden::run(&cases, &renderer, options, &mut |outcome| println!("{}", outcome.line()));
+
+    if let Some(path) = &args.junit {
+        let xml = glint_golden::junit_xml(&suite.name, &outcomes);
+        glint_gpu::write_atomically(path, xml.as_bytes())
+            .map_err(|e| Failure::new(exit::OUTPUT, format!("{}: cannot write: {e}", path.display())))?;
+    }
+    if let Some(dir) = &args.report {
+        glint_golden::write_report(dir, &suite.name, &outcomes).map_err(|e| Failure::new(exit::OUTPUT, e))?;
+    }
+    let summary = Summary::of(&outcomes);
+    println!("{summary}");
+    if summary.failed == 0 { Ok(()) } else { Err(Failure::explained(exit::DIFFERENT)) }
+}

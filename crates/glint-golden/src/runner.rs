@@ -1,0 +1,308 @@
+//! Running a suite: each case is rendered, compared with its golden and,
+//! when asked, blessed. Cases render one after another, since they share one
+//! GPU (and lavapipe already spreads each dispatch over every core); reading
+//! goldens, comparing, writing goldens and encoding report images run on
+//! worker threads while the next case renders. Outcomes come out in the
+//! suite's order whatever order the workers finish in, so every output is the
+//! same on every run.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::PathBuf;
+use std::sync::{mpsc, Mutex};
+
+use glint_gpu::{Image, PngBits, Renderer};
+
+use crate::criteria::judge;
+use crate::diff_map::diff_map;
+use crate::image_io::{self, encode_png, LinearImage};
+use crate::manifest::Case;
+use crate::metrics::measure;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    Passed,
+    /// The golden was written.
+    Blessed,
+    /// Rendered and compared, and not close enough (or of another size).
+    Mismatch,
+    NoGolden,
+    /// The scene, the golden or the GPU failed.
+    Error,
+}
+
+impl Status {
+    pub fn failed(self) -> bool {
+        matches!(self, Status::Mismatch | Status::NoGolden | Status::Error)
+    }
+}
+
+/// An image encoded as PNG, with its size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Png {
+    pub bytes: Vec<u8>,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Png {
+    fn of_rgb(rgb: &image::RgbImage) -> Self {
+        Png { bytes: encode_png(rgb), width: rgb.width(), height: rgb.height() }
+    }
+
+    fn of_linear(image: &LinearImage) -> Self {
+        Png { bytes: image.to_png(), width: image.width, height: image.height }
+    }
+}
+
+/// The images of a failing case for the HTML report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportImages {
+    pub reference: Option<Png>,
+    pub render: Png,
+    pub diff: Option<Png>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outcome {
+    pub name: String,
+    /// The stem of the case's report files.
+    pub file_stem: String,
+    pub scene: PathBuf,
+    pub golden: PathBuf,
+    pub status: Status,
+    /// One line: the comparison's summary, or what went wrong.
+    pub detail: String,
+    pub images: Option<ReportImages>,
+}
+
+impl Outcome {
+    fn new(case: &Case, status: Status, detail: String) -> Self {
+        Outcome {
+            name: case.name.clone(),
+            file_stem: case.file_stem(),
+            scene: case.scene.clone(),
+            golden: case.golden.clone(),
+            status,
+            detail,
+            images: None,
+        }
+    }
+
+    /// The case's line in `glint test`'s output.
+    pub fn line(&self) -> String {
+        let label = match self.status {
+            Status::Passed => "ok",
+            Status::Blessed => "blessed",
+            Status::Mismatch | Status::NoGolden | Status::Error => "FAIL",
+        };
+        format!("{label:<7} {}: {}", self.name, self.detail)
+    }
+}
+
+/// Counts of a run; displayed as the closing line `N passed, N failed`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Summary {
+    pub passed: usize,
+    pub failed: usize,
+}
+
+impl Summary {
+    pub fn of(outcomes: &[Outcome]) -> Self {
+        let failed = outcomes.iter().filter(|o| o.status.failed()).count();
+        Summary { passed: outcomes.len() - failed, failed }
+    }
+}
+
+impl fmt::Display for Summary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} passed, {} failed", self.passed, self.failed)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bless {
+    No,
+    /// Write the goldens that are missing or that fail.
+    MissingOrFailing,
+    /// Write every case's golden (the cases named on the command line).
+    All,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct RunOptions {
+    pub bless: Bless,
+    /// Keep PNG images of failing cases in the outcomes, for a report.
+    pub report_images: bool,
+}
+
+struct Job<'a> {
+    index: usize,
+    case: &'a Case,
+    rendered: Result<Image, String>,
+}
+
+/// Runs `cases` in order on `renderer`, handing each outcome to `on_outcome`
+/// in that order as soon as it and all before it are known.
+pub fn run(cases: &[&Case], renderer: &Renderer, options: RunOptions, on_outcome: &mut dyn FnMut(&Outcome)) -> Vec<Outcome> {
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(cases.len()).max(1);
+    // A bounded queue keeps at most a few rendered images waiting.
+    let (job_sender, job_receiver) = mpsc::sync_channel::<Job>(workers);
+    let job_receiver = Mutex::new(job_receiver);
+    let (done_sender, done_receiver) = mpsc::channel::<(usize, Outcome)>();
+    let mut in_order = InOrder::default();
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let done_sender = done_sender.clone();
+            let job_receiver = &job_receiver;
+            scope.spawn(move || {
+                loop {
+                    // The lock is held only while waiting for the next job.
+                    let job = job_receiver.lock().unwrap_or_else(|e| e.into_inner()).recv();
+                    let Ok(job) = job else { break };
+                    let outcome = conclude(job.case, job.rendered, options);
+                    if done_sender.send((job.index, outcome)).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(done_sender);
+        for (index, case) in cases.iter().enumerate() {
+            let rendered = crate::case_render::render(renderer, case);
+            job_sender.send(Job { index, case, rendered }).expect("the workers outlive the jobs");
+            while let Ok((index, outcome)) = done_receiver.try_recv() {
+                in_order.add(index, outcome, on_outcome);
+            }
+        }
+        drop(job_sender);
+        for (index, outcome) in done_receiver {
+            in_order.add(index, outcome, on_outcome);
+        }
+    });
+    in_order.done
+}
+
+/// Outcomes released in index order.
+#[derive(Default)]
+struct InOrder {
+    waiting: BTreeMap<usize, Outcome>,
+    done: Vec<Outcome>,
+}
+
+impl InOrder {
+    fn add(&mut self, index: usize, outcome: Outcome, on_outcome: &mut dyn FnMut(&Outcome)) {
+        self.waiting.insert(index, outcome);
+        while let Some(outcome) = self.waiting.remove(&self.done.len()) {
+            on_outcome(&outcome);
+            self.done.push(outcome);
+        }
+    }
+}
+
+/// Compares a rendered case with its golden, blessing it if asked.
+fn conclude(case: &Case, rendered: Result<Image, String>, options: RunOptions) -> Outcome {
+    let image = match rendered {
+        Ok(image) => image,
+        Err(e) => return Outcome::new(case, Status::Error, e),
+    };
+    if options.bless == Bless::All {
+        return bless(case, &image);
+    }
+    let Some(format) = image_io::format_of(&case.golden) else {
+        return Outcome::new(case, Status::Error, format!("golden {}: use a .png, .exr or .pfm file", case.golden.display()));
+    };
+    let render = LinearImage::from_render(&image, format);
+    let report = |reference: Option<&LinearImage>, diff: Option<Png>| {
+        options.report_images.then(|| ReportImages { reference: reference.map(Png::of_linear), render: Png::of_linear(&render), diff })
+    };
+    if !case.golden.exists() {
+        if options.bless == Bless::MissingOrFailing {
+            return bless(case, &image);
+        }
+        let mut outcome = Outcome::new(case, Status::NoGolden, format!("no golden: {}", case.golden.display()));
+        outcome.images = report(None, None);
+        return outcome;
+    }
+    let (status, detail, images) = match image_io::read(&case.golden) {
+        Err(e) => (Status::Error, format!("golden {e}"), report(None, None)),
+        Ok(reference) => match measure(&reference, &render) {
+            Err(e) => (
+                Status::Mismatch,
+                format!("size {}x{}, golden {}x{}", e.test.0, e.test.1, e.reference.0, e.reference.1),
+                report(Some(&reference), None),
+            ),
+            Ok(measurement) => {
+                let verdict = judge(&measurement, &case.criteria);
+                if verdict.passed() {
+                    (Status::Passed, verdict.summary(), None)
+                } else {
+                    let diff = options.report_images.then(|| Png::of_rgb(&diff_map(&measurement, case.criteria.metric)));
+                    (Status::Mismatch, verdict.summary(), report(Some(&reference), diff))
+                }
+            }
+        },
+    };
+    if status.failed() && options.bless == Bless::MissingOrFailing {
+        return bless(case, &image);
+    }
+    let mut outcome = Outcome::new(case, status, detail);
+    outcome.images = images;
+    outcome
+}
+
+fn bless(case: &Case, image: &Image) -> Outcome {
+    let written = case
+        .golden
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .map_or(Ok(()), std::fs::create_dir_all)
+        .map_err(|e| format!("{}: cannot create the directory: {e}", case.golden.display()))
+        .and_then(|()| glint_gpu::write_image(image, &case.golden, PngBits::Eight).map_err(|e| e.to_string()));
+    match written {
+        Ok(()) => Outcome::new(case, Status::Blessed, format!("wrote {}", case.golden.display())),
+        Err(e) => Outcome::new(case, Status::Error, format!("cannot bless: {e}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case() -> Case {
+        Case {
+            name: "c".into(),
+            scene: "c.toml".into(),
+            golden: "c.png".into(),
+            render: Default::default(),
+            criteria: crate::criteria::Criteria::for_metric(crate::metrics::Metric::Flip),
+        }
+    }
+
+    #[test]
+    fn outcomes_are_released_in_order() {
+        let case = case();
+        let outcome = |detail: &str| Outcome::new(&case, Status::Passed, detail.into());
+        let mut seen = Vec::new();
+        let mut in_order = InOrder::default();
+        let mut record = |o: &Outcome| seen.push(o.detail.clone());
+        in_order.add(2, outcome("third"), &mut record);
+        in_order.add(1, outcome("second"), &mut record);
+        in_order.add(0, outcome("first"), &mut record);
+        in_order.add(3, outcome("fourth"), &mut record);
+        assert_eq!(seen, ["first", "second", "third", "fourth"]);
+        assert_eq!(in_order.done.len(), 4);
+    }
+
+    #[test]
+    fn the_summary_is_the_closing_line() {
+        let case = case();
+        let outcomes: Vec<Outcome> = [Status::Passed, Status::Blessed, Status::Mismatch, Status::NoGolden, Status::Error]
+            .into_iter()
+            .map(|s| Outcome::new(&case, s, "d".into()))
+            .collect();
+        assert_eq!(Summary::of(&outcomes).to_string(), "2 passed, 3 failed");
+        assert_eq!(outcomes[2].line(), "FAIL    c: d");
+        assert_eq!(outcomes[1].line(), "blessed c: d");
+    }
+}
