@@ -4,8 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
-use glint_golden::criteria::{number, percent};
-use glint_golden::{Criteria, Measurement, Metric, Verdict};
+use glint_golden::{number, percent, Criteria, Measurement, Metric, Verdict};
 
 use crate::{exit, Failure};
 
@@ -59,7 +58,7 @@ fn fraction(s: &str) -> Result<f64, String> {
 
 fn png_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
-    match glint_golden::image_io::format_of(&path) {
+    match glint_golden::format_of(&path) {
         Some(glint_gpu::Format::Png) => Ok(path),
         _ => Err(format!("{s}: the diff map is written as .png")),
     }
@@ -98,7 +97,7 @@ pub fn run(args: &CompareArgs) -> Result<(), Failure> {
     let verdict = glint_golden::judge(&measurement, &criteria);
     if let Some(path) = &args.diff {
         let map = glint_golden::diff_map(&measurement, metric);
-        let bytes = glint_golden::image_io::encode_png(&map);
+        let bytes = glint_golden::encode_png(&map);
         glint_gpu::write_atomically(path, &bytes).map_err(|e| Failure::new(exit::OUTPUT, format!("{}: cannot write: {e}", path.display())))?;
     }
     if args.json {
