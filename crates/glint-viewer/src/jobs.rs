@@ -2,7 +2,21 @@
 //! building and uploading it) runs on its own thread; its result comes back
 //! through a channel and wakes the UI.
 
+use std::path::PathBuf;
 use std::sync::mpsc::{channel, Receiver, Sender};
+
+use glint_gpu::GpuError;
+use glint_scene::{LoadError, Scene};
+
+use crate::engine::{Canvas, Kernels};
+use crate::image::CanvasKey;
+
+/// A finished background job.
+pub(crate) enum Job {
+    Compiled { result: Result<Kernels, GpuError>, fallback_error: Option<GpuError> },
+    Loaded { generation: u64, path: PathBuf, reload: bool, result: Result<Scene, LoadError> },
+    Prepared { key: CanvasKey, result: Result<Box<Canvas>, GpuError> },
+}
 
 pub struct Jobs<T> {
     tx: Sender<T>,

@@ -11,9 +11,15 @@
 
 mod app;
 mod camera_control;
+mod document;
 mod engine;
+mod image;
 mod jobs;
 mod panel;
+mod selection;
+mod settings;
+mod shaders;
+mod viewport;
 mod watch;
 
 use std::path::PathBuf;

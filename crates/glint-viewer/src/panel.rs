@@ -11,8 +11,9 @@ use glint_scene::gpu_types::View;
 use glint_scene::scene::MAX_DEPTH_LIMIT;
 use glint_scene::{Attenuation, DepthCue, Light, LightKind, Projection, ShadowMode, Shape, SpecularModel};
 
-use crate::app::{SpecularChoice, ViewerApp};
+use crate::app::ViewerApp;
 use crate::camera_control;
+use crate::settings::SpecularChoice;
 
 const VIEWS: [(View, &str); 7] = [
     (View::Shaded, "shaded"),
@@ -60,7 +61,7 @@ fn kind_name(shape: &Shape) -> &'static str {
 impl ViewerApp {
     pub(crate) fn controls(&mut self, ui: &mut Ui) {
         self.scene_section(ui);
-        if self.doc.is_none() {
+        if self.document.loaded.is_none() {
             return;
         }
         self.selection_section(ui);
@@ -73,14 +74,14 @@ impl ViewerApp {
 
     fn scene_section(&mut self, ui: &mut Ui) {
         CollapsingHeader::new("Scene").default_open(true).show(ui, |ui| {
-            if let Some(path) = &self.scene_path {
+            if let Some(path) = &self.document.path {
                 ui.label(path.display().to_string());
             }
             ui.horizontal(|ui| {
                 let label = ui.label("file");
-                ui.text_edit_singleline(&mut self.open_path).labelled_by(label.id);
-                if ui.button("Open").clicked() && !self.open_path.trim().is_empty() {
-                    self.open(self.open_path.trim().into());
+                ui.text_edit_singleline(&mut self.document.open_path).labelled_by(label.id);
+                if ui.button("Open").clicked() && !self.document.open_path.trim().is_empty() {
+                    self.open(self.document.open_path.trim().into());
                 }
             });
             ui.small("Or drop a .toml, .nff or .obj file on the window. The file is reloaded when it changes.");
@@ -91,7 +92,7 @@ impl ViewerApp {
         let mut reset = false;
         let mut frame = false;
         CollapsingHeader::new("Camera").default_open(true).show(ui, |ui| {
-            let Some(doc) = self.doc.as_mut() else { return };
+            let Some(doc) = self.document.loaded.as_mut() else { return };
             let cam = &mut doc.scene.camera;
             let mut orthographic = matches!(cam.projection, Projection::Orthographic { .. });
             ui.horizontal(|ui| {
@@ -115,11 +116,12 @@ impl ViewerApp {
             });
             ui.small("Left drag: orbit · right or middle drag: pan · wheel: zoom · W A S D Q E: fly (Shift: faster)");
         });
+        let Some(doc) = self.document.loaded.as_mut() else { return };
         if reset {
-            self.reset_camera();
+            doc.reset_camera();
         }
         if frame {
-            self.frame_all();
+            doc.frame_all();
         }
     }
 
@@ -159,7 +161,7 @@ impl ViewerApp {
                     ui.selectable_value(&mut s.specular, SpecularChoice::Phong, "Phong");
                     ui.selectable_value(&mut s.specular, SpecularChoice::Blinn, "Blinn-Phong");
                 });
-            let Some(doc) = self.doc.as_mut() else { return };
+            let Some(doc) = self.document.loaded.as_mut() else { return };
             let r = &mut doc.scene.render;
             ui.add(Slider::new(&mut r.max_depth, 1..=MAX_DEPTH_LIMIT).text("max depth"));
             ui.horizontal(|ui| {
@@ -176,11 +178,11 @@ impl ViewerApp {
     }
 
     fn lights_section(&mut self, ui: &mut Ui) {
-        let selected = self.selected_light;
+        let selected = self.selection.light;
         let mut remove = None;
         let mut add = false;
         CollapsingHeader::new("Lights").default_open(true).show(ui, |ui| {
-            let Some(doc) = self.doc.as_mut() else { return };
+            let Some(doc) = self.document.loaded.as_mut() else { return };
             // Sliders reach a scene's size beyond its bounds.
             let (lo, hi) = (doc.bounds.0 - doc.radius * 2.0, doc.bounds.1 + doc.radius * 2.0);
             let (lo, hi) = if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::splat(-10.0), Vec3::splat(10.0)) };
@@ -215,10 +217,10 @@ impl ViewerApp {
             }
             add = ui.button("Add light").clicked();
         });
-        let Some(doc) = self.doc.as_mut() else { return };
+        let Some(doc) = self.document.loaded.as_mut() else { return };
         if let Some(i) = remove {
             doc.scene.lights.remove(i);
-            self.selected_light = None;
+            self.selection.light = None;
         }
         if add {
             // Above the scene, near the camera's side of it.
@@ -233,13 +235,13 @@ impl ViewerApp {
                 attenuation: Attenuation::None,
                 enabled: true,
             });
-            self.selected_light = Some(doc.scene.lights.len() - 1);
+            self.selection.light = Some(doc.scene.lights.len() - 1);
         }
     }
 
     fn environment_section(&mut self, ui: &mut Ui) {
         CollapsingHeader::new("Ambient, background, depth cue").default_open(false).show(ui, |ui| {
-            let Some(doc) = self.doc.as_mut() else { return };
+            let Some(doc) = self.document.loaded.as_mut() else { return };
             let s = &mut doc.scene;
             // I_a is a colour times an intensity; edit them apart.
             let mut intensity = s.ambient.max_element();
@@ -272,10 +274,10 @@ impl ViewerApp {
     }
 
     fn selection_section(&mut self, ui: &mut Ui) {
-        let Some(index) = self.selected_object else { return };
+        let Some(index) = self.selection.object else { return };
         let mut deselect = false;
         CollapsingHeader::new("Selected object").default_open(true).show(ui, |ui| {
-            let Some(doc) = self.doc.as_mut() else { return };
+            let Some(doc) = self.document.loaded.as_mut() else { return };
             let Some(object) = doc.scene.objects.get(index) else { return };
             let kind = object.shapes.first().map_or("empty", kind_name);
             let m = object.material;
@@ -316,7 +318,7 @@ impl ViewerApp {
             deselect = ui.button("Deselect").clicked();
         });
         if deselect {
-            self.selected_object = None;
+            self.selection.object = None;
         }
     }
 
@@ -324,14 +326,14 @@ impl ViewerApp {
         CollapsingHeader::new("Save").default_open(true).show(ui, |ui| {
             ui.horizontal(|ui| {
                 let label = ui.label("image");
-                ui.text_edit_singleline(&mut self.screenshot_path).labelled_by(label.id);
+                ui.text_edit_singleline(&mut self.document.screenshot_path).labelled_by(label.id);
                 if ui.button("Save image").on_hover_text("PNG at the render resolution").clicked() {
                     self.save_screenshot();
                 }
             });
             ui.horizontal(|ui| {
                 let label = ui.label("scene");
-                ui.text_edit_singleline(&mut self.save_path).labelled_by(label.id);
+                ui.text_edit_singleline(&mut self.document.save_path).labelled_by(label.id);
                 if ui.button("Save scene as").on_hover_text("TOML with the current camera, lights and materials").clicked() {
                     self.save_scene();
                 }
