@@ -9,7 +9,7 @@ use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Format, Gpu, Image, PngBits, RayStats, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
 use glint_scene::scene::MAX_DEPTH_LIMIT;
-use glint_scene::toml_scene::MAX_IMAGE_SIDE;
+use glint_scene::scene::MAX_IMAGE_SIDE;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::{exit, Failure};

@@ -3,7 +3,7 @@
 
 use glint_gpu::{Acceleration, Image, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
-use glint_scene::toml_scene::MAX_IMAGE_SIDE;
+use glint_scene::scene::MAX_IMAGE_SIDE;
 use glint_scene::{LoadOptions, NffAngle};
 
 use crate::manifest::Case;

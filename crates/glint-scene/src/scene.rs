@@ -70,6 +70,9 @@ pub struct RenderSettings {
     pub refractions: bool,
 }
 
+/// The largest image side Glint accepts, in pixels, whatever the scene's format.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
 /// The deepest ray tree the GPU kernel's explicit stack holds.
 pub const MAX_DEPTH_LIMIT: u32 = 16;
 

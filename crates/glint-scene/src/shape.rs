@@ -1,4 +1,34 @@
+//! The primitives of the scene model, and the one place each is built and
+//! checked from what a file says (pbrt's `Shape::Create`): every loader (TOML,
+//! NFF, OBJ) calls these constructors, so the same input has the same outcome
+//! in every format. The policy (docs/scene-format.md, "Errors and warnings"):
+//!
+//! * a **degenerate** shape (a sphere of radius 0, a triangle or polygon with
+//!   no area, a cone whose ends coincide or whose radii are both 0) has no
+//!   surface to render: it is skipped, with a warning naming file and line;
+//! * a **non-planar** polygon is kept, with a warning: it is intersected in the
+//!   plane of its Newell normal, which is well defined, and files written by
+//!   other tools (the SPD generators among them) contain slightly bent ones;
+//! * a shape whose bounds **overflow** 32-bit floats cannot be placed in the
+//!   BVH: an error.
+//!
+//! Values out of their domain (a negative radius, NaN) are the loaders' to
+//! report at the token that holds them; the constructors take them as checked.
+
 use glam::Vec3;
+
+/// Why what a file describes does not become a shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ShapeProblem {
+    /// No surface to render: the loader skips the shape and warns with this text.
+    Degenerate(String),
+    /// The shape's bounds overflow 32-bit floats: the loader reports an error.
+    Overflows,
+}
+
+/// A polygon whose vertices stray further than this from its plane, relative to
+/// its size, is reported as non-planar (and kept).
+pub const NON_PLANAR_TOLERANCE: f32 = 1e-4;
 
 /// One geometric primitive.
 #[derive(Debug, Clone, PartialEq)]
@@ -14,6 +44,49 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// A sphere; `radius` must not be negative.
+    pub fn sphere(center: Vec3, radius: f32) -> Result<Shape, ShapeProblem> {
+        if radius == 0.0 {
+            return Err(ShapeProblem::Degenerate("sphere of radius 0 skipped".into()));
+        }
+        finite(Shape::Sphere { center, radius })
+    }
+
+    /// An open cone or cylinder; the radii must not be negative. A cone whose
+    /// base radius is 0 is stored with its ends swapped (the same surface), so
+    /// the base is always the wide end.
+    pub fn cone(base: Vec3, base_radius: f32, apex: Vec3, apex_radius: f32) -> Result<Shape, ShapeProblem> {
+        // Ends closer than f32 can measure leave the axis without a direction.
+        if (apex - base).length() == 0.0 || (base_radius == 0.0 && apex_radius == 0.0) {
+            return Err(ShapeProblem::Degenerate("degenerate cone (base equals apex, or both radii 0) skipped".into()));
+        }
+        finite(if base_radius == 0.0 {
+            Shape::Cone { base: apex, base_radius: apex_radius, apex: base, apex_radius: base_radius }
+        } else {
+            Shape::Cone { base, base_radius, apex, apex_radius }
+        })
+    }
+
+    /// A triangle, smooth-shaded when it has (unit) vertex normals.
+    pub fn triangle(vertices: [Vec3; 3], normals: Option<[Vec3; 3]>) -> Result<Shape, ShapeProblem> {
+        if polygon_normal(&vertices).is_none() {
+            return Err(ShapeProblem::Degenerate("degenerate triangle (no area) skipped".into()));
+        }
+        finite(Shape::Triangle { vertices, normals })
+    }
+
+    /// A polygon of at least 3 vertices, with a warning when it is not planar.
+    pub fn polygon(vertices: Vec<Vec3>) -> Result<(Shape, Option<String>), ShapeProblem> {
+        let Some(normal) = polygon_normal(&vertices) else {
+            let n = vertices.len();
+            return Err(ShapeProblem::Degenerate(format!("degenerate polygon ({n} vertices, no area) skipped")));
+        };
+        let deviation = polygon_non_planarity(&vertices, normal);
+        let warning = (deviation > NON_PLANAR_TOLERANCE)
+            .then(|| format!("polygon is not planar (its vertices leave the plane by {deviation:.2e} of its size); kept"));
+        Ok((finite(Shape::Polygon { vertices })?, warning))
+    }
+
     /// Axis-aligned bounds (min, max).
     pub fn bounds(&self) -> (Vec3, Vec3) {
         match self {
@@ -28,6 +101,16 @@ impl Shape {
                 ((base - b).min(apex - a), (base + b).max(apex + a))
             }
         }
+    }
+}
+
+/// `shape` if its bounding box is finite.
+fn finite(shape: Shape) -> Result<Shape, ShapeProblem> {
+    let (lo, hi) = shape.bounds();
+    if lo.is_finite() && hi.is_finite() {
+        Ok(shape)
+    } else {
+        Err(ShapeProblem::Overflows)
     }
 }
 

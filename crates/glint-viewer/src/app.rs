@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use egui::Rect;
 use glint_gpu::shaders::ShaderSource;
-use glint_scene::toml_scene::MAX_IMAGE_SIDE;
+use glint_scene::scene::MAX_IMAGE_SIDE;
 use glint_scene::{LoadError, Scene};
 
 use crate::document::{Document, LoadedScene};

@@ -1,0 +1,129 @@
+//! Glint's native scene format: TOML, documented in docs/scene-format.md.
+//!
+//! Every table is a plain struct with `deny_unknown_fields` (no serde enums, which
+//! would buffer the input and lose positions), numbers go through newtypes that
+//! reject NaN and infinity while the parser still knows where they are, and
+//! checks that need the whole table report the table's own line.
+//!
+//! Two kinds of entries bring in other files, named relative to the scene file:
+//!
+//! * an object of `type = "mesh"` with `path = "model.obj"` places an OBJ mesh
+//!   (its MTL materials, unless `material = "name"` overrides them all) with an
+//!   optional transform: `scale = s` or `[sx, sy, sz]`, `rotate = [rx, ry, rz]`
+//!   (degrees, about X, then Y, then Z), `translate = [x, y, z]`, applied in that
+//!   order; or instead `matrix = [[..4..], [..], [..], [..]]`, a row-major affine
+//!   4×4 matrix (last row `[0, 0, 0, 1]`) acting on column vectors. Normals
+//!   transform by the inverse transpose. An OBJ named by several objects is read
+//!   once and copied, transformed, into each; each OBJ part becomes one object.
+//! * `[[include]]` with `path = "part.nff"` (or `spd:NAME[:SIZE]`) merges an NFF file's objects, lights
+//!   and materials (after the TOML file's own objects, in include order); its
+//!   `v` block (optional in an included file) and background are ignored, the
+//!   TOML file's camera and image apply. Its lights keep their NFF intensity
+//!   1/√n, n counting the lights of that NFF file.
+//!
+//! An error in the reference (a missing file, a bad transform) names the TOML
+//! line; an error inside the OBJ, MTL or NFF file names that file.
+
+mod build;
+mod defs;
+mod mesh;
+mod object;
+#[cfg(test)]
+mod tests;
+mod values;
+
+use std::cell::RefCell;
+use std::path::Path;
+
+use glam::Vec3;
+
+use crate::toml_errors;
+use crate::{LoadError, ReadError, Scene};
+use build::Builder;
+
+use defs::{AmbientDef, CameraDef, DepthCueDef, FileDef, ImageDef, IncludeDef, LightDef, MaterialDef, ObjectDef, RenderDef};
+
+pub fn load(path: &Path) -> Result<Scene, LoadError> {
+    let source = crate::read_text(path).map_err(|e| match e {
+        ReadError::Io(e) => LoadError::new(path, None, format!("cannot read scene file: {e}")),
+        ReadError::NotText(e) => e,
+    })?;
+    parse(&source, path)
+}
+
+/// Parses TOML scene text; `path` names the file in errors.
+pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
+    let file: FileDef = toml::from_str(source).map_err(|e| toml_errors::explain(source, path, &e, &SCHEMA))?;
+    Builder { source, path, warnings: RefCell::new(Vec::new()) }.build(file)
+}
+
+/// The tables and keys of the format, for errors about unknown keys.
+const SCHEMA: toml_errors::Schema = toml_errors::Schema { fields: schema_fields, object_keys };
+
+fn schema_fields(path: &[&str]) -> Option<&'static [&'static str]> {
+    use toml_errors::fields_of;
+    Some(match path {
+        [] => fields_of::<FileDef>(),
+        ["image"] => fields_of::<ImageDef>(),
+        ["camera"] => fields_of::<CameraDef>(),
+        ["ambient"] => fields_of::<AmbientDef>(),
+        ["render"] => fields_of::<RenderDef>(),
+        ["depth_cue"] => fields_of::<DepthCueDef>(),
+        ["light"] => fields_of::<LightDef>(),
+        ["material", _] => fields_of::<MaterialDef>(),
+        ["object"] => fields_of::<ObjectDef>(),
+        ["include"] => fields_of::<IncludeDef>(),
+        _ => return None,
+    })
+}
+
+/// The keys an object of type `kind` takes besides `type` and `material`.
+pub(super) fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
+    Some(match kind {
+        "sphere" => &["center", "radius"],
+        "triangle" => &["vertices", "normals"],
+        "polygon" => &["vertices"],
+        "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
+        "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
+        "icosphere" => &["center", "radius", "subdivisions", "displacement"],
+        _ => return None,
+    })
+}
+
+/// A field of view of at most π "degrees" was probably written in radians.
+pub(crate) fn radians_warning(key: &str, degrees: f32) -> Option<String> {
+    (degrees > 0.0 && degrees <= std::f32::consts::PI).then(|| {
+        format!("{key}: {degrees}° is a very narrow view; angles are in degrees ({degrees} radians is {:.1})", degrees.to_degrees())
+    })
+}
+
+/// A warning for a colour with a component above 1. `reflectance`: a colour
+/// that must lie in [0, 1] (a material's); otherwise light, which may be
+/// brighter than 1 and is warned about only when it looks like 0–255 values.
+pub(super) fn colour_warning(key: &str, c: Vec3, reflectance: bool) -> Option<String> {
+    if c.max_element() <= 1.0 {
+        return None;
+    }
+    let whole = c.to_array().iter().all(|v| v.fract() == 0.0 && *v <= 255.0);
+    if !reflectance && !whole {
+        return None;
+    }
+    let short = |v: f32| {
+        let s = format!("{:.2}", (v * 100.0).round() / 100.0);
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    let shown = |c: Vec3| {
+        if c.x == c.y && c.y == c.z {
+            short(c.x)
+        } else {
+            format!("[{}, {}, {}]", short(c.x), short(c.y), short(c.z))
+        }
+    };
+    let brightness = if reflectance { "" } else { " (set the brightness with `intensity`)" };
+    Some(if whole {
+        format!("{key}: {} looks like 0–255 values, but colours are 0 to 1{brightness}; did you mean {}?", shown(c), shown(c / 255.0))
+    } else {
+        format!("{key}: {} is above 1, but a material's colours are 0 to 1: it would reflect more light than arrives", shown(c))
+    })
+}
+
