@@ -7,7 +7,9 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use glint_gpu::shaders::{imports, Kernel, ShaderSource, SOURCES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
-use glint_scene::gpu_types::{DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ResolveParams, SceneUniforms};
+use glint_scene::gpu_types::{
+    DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms,
+};
 
 fn module(kernel: Kernel) -> naga::Module {
     ShaderSource::Embedded.compose(kernel).unwrap().validate().unwrap()
@@ -150,7 +152,7 @@ fn host_structs_match_wgsl() {
             flags, bvh_root
         }
     );
-    layout!(m, DispatchParams { origin, end, sample_index, seed, sample_count, pixel_filter, view, _pad0, _pad1, _pad2 });
+    layout!(m, DispatchParams { origin, end, sample_index, seed, sample_count, pixel_filter, view, tile_x, tile_y, tile_width });
     layout!(m, GpuLight { position, kind, radiance, attenuation, coefficients });
     layout!(
         m,
@@ -161,6 +163,18 @@ fn host_structs_match_wgsl() {
     layout!(m, GpuPrim { a, b, c, kind_material, object, first, count });
     layout!(m, GpuNode { quantized, children });
     layout!(m, GpuGrid { origin, exponents });
+    let probe = module(Kernel::Probe);
+    layout!(
+        probe,
+        ProbeRay {
+            origin, kind, dir, parent, weight, depth, point, t, geometric, object, shading, flags, ambient, eta, diffuse,
+            n_dot_l, specular, distance, transmittance, light, cue_scale, material, blocker, _pad
+        }
+    );
+    // The buffer's rays start right after the head the host reads.
+    let (_, buffer) = probe.types.iter().find(|(_, t)| t.name.as_deref() == Some("ProbeBuffer")).unwrap();
+    let naga::TypeInner::Struct { members, .. } = &buffer.inner else { panic!("ProbeBuffer is not a struct") };
+    assert_eq!(members.last().unwrap().offset as usize, size_of::<ProbeHeader>());
     for kernel in [Kernel::Resolve, Kernel::Present] {
         let m = module(kernel);
         layout!(m, ResolveParams { pixel_count, tone_map, exposure, view, scale, _pad0, _pad1, _pad2 });

@@ -2,7 +2,7 @@
 // A kernel of its own, without the ray tree, compiles to far leaner code than
 // the trace kernel (register and private-memory pressure), so these views and
 // picking run faster.
-// import: bindings bvh camera dispatch primitive shade types
+// import: bindings bvh camera diffuse_view dispatch primitive types
 
 fn primary_view(eye: Ray) -> vec3<f32> {
     let hit = traverse(eye, 0.0, MISS, false, false);

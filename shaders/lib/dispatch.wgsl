@@ -8,6 +8,15 @@ fn count_ray(kind: u32) {
     local_stats[kind] += 1u;
 }
 
+// The rays this invocation has traced so far, of every kind.
+fn rays_counted() -> u32 {
+    var total = 0u;
+    for (var k = 0u; k < STAT_COUNT; k++) {
+        total += local_stats[k];
+    }
+    return total;
+}
+
 // The pixel an invocation traces in the current band, if the band covers one.
 fn band_pixel(gid: vec3<u32>) -> vec2<u32> {
     return gid.xy + dispatch.origin;
@@ -18,9 +27,10 @@ fn in_band(pixel: vec2<u32>) -> bool {
 }
 
 // The first sample of a render writes its pixel (the sum starts from zero), so
-// it need not read it: a load per lane saved.
+// it need not read it: a load per lane saved. The accumulation buffer holds
+// the current tile alone, indexed from the tile's corner.
 fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
-    let index = pixel.y * uniforms.width + pixel.x;
+    let index = (pixel.y - dispatch.tile_y) * dispatch.tile_width + (pixel.x - dispatch.tile_x);
     if dispatch.sample_index == 0u {
         accum[index] = vec4<f32>(color, 1.0);
     } else {

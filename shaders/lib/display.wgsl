@@ -6,7 +6,8 @@
 // then tone mapped and encoded as sRGB; data views are mapped to colours:
 // normals as 0.5 + 0.5·n, depth as grey (white near, black at `scale`), object
 // ids as distinct colours, heat maps as a false-colour ramp of nodes visited
-// over `scale`. Misses are black. crates/glint-gpu/src/display.rs is its CPU twin.
+// over `scale`, and so are the teaching views' tree depths and ray counts.
+// Misses are black. crates/glint-gpu/src/display.rs is its CPU twin.
 
 struct ResolveParams {
     pixel_count: u32,
@@ -57,7 +58,8 @@ fn finite_or_zero(c: vec3<f32>) -> vec3<f32> {
 }
 
 fn is_data_view(view: u32) -> bool {
-    return view == VIEW_NORMAL || view == VIEW_DEPTH || view == VIEW_ID || view == VIEW_HEATMAP;
+    return view == VIEW_NORMAL || view == VIEW_DEPTH || view == VIEW_ID || view == VIEW_HEATMAP
+        || view == VIEW_RAY_DEPTH || view == VIEW_RAY_COUNT;
 }
 
 fn linear_value(s: vec4<f32>) -> vec3<f32> {
@@ -77,7 +79,7 @@ fn display_value(s: vec4<f32>) -> vec3<f32> {
         case VIEW_ID: {
             return select(vec3<f32>(0.0), id_colour(v.x), v.x >= 0.0);
         }
-        case VIEW_HEATMAP: {
+        case VIEW_HEATMAP, VIEW_RAY_DEPTH, VIEW_RAY_COUNT: {
             return heat_ramp(v.x / params.scale);
         }
         default: {

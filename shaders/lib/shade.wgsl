@@ -3,7 +3,7 @@
 // with specular k_s·O_s·(R·V)^n (Phong) or k_s·O_s·(N·H)^n (Blinn-Phong), O_s white
 // when the material has none, or Schlick's F(V·H) with a coloured F0 in place
 // of k_s·O_s for metallic highlights. S is the shadow term, att the attenuation.
-// import: bindings bvh primitive reflect shadow types
+// import: bindings primitive reflect shadow types
 
 fn light_attenuation(light: GpuLight, d: f32) -> f32 {
     switch light.attenuation {
@@ -33,8 +33,11 @@ fn specular_term(m: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> ve
 }
 
 // `v` points from the surface towards the viewer.
+// Each term is also handed to the kernel's `note_ambient` and `note_light`,
+// which the probe kernel records and the others ignore.
 fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
     var color = m.ka * uniforms.ambient * m.color;
+    note_ambient(color);
     for (var i = 0u; i < uniforms.light_count; i++) {
         let light = lights[i];
         var l: vec3<f32>;
@@ -54,12 +57,16 @@ fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
         if n_dot_l <= 0.0 || dot(s.geometric, l) <= 0.0 {
             continue;
         }
-        let visible = light_visibility(s.point, s.geometric, l, distance);
-        if all(visible == vec3<f32>(0.0)) {
+        let shadow = light_visibility(s.point, s.geometric, l, distance);
+        if all(shadow.transmittance == vec3<f32>(0.0)) {
+            note_light(i, s.point, l, distance, n_dot_l, shadow, vec3<f32>(0.0), vec3<f32>(0.0));
             continue;
         }
-        let diffuse = m.kd * m.color * n_dot_l;
-        color += att * visible * light.radiance * (diffuse + specular_term(m, s.shading, l, v));
+        let reach = att * shadow.transmittance * light.radiance;
+        let diffuse = reach * m.kd * m.color * n_dot_l;
+        let specular = reach * specular_term(m, s.shading, l, v);
+        note_light(i, s.point, l, distance, n_dot_l, shadow, diffuse, specular);
+        color += diffuse + specular;
     }
     return color;
 }
@@ -69,35 +76,4 @@ fn depth_cue_scale(d: f32) -> f32 {
     let dc = uniforms.depth_cue;
     let f = clamp((d - dc.x) / (dc.y - dc.x), 0.0, 1.0);
     return mix(dc.z, dc.w, f);
-}
-
-// The `diffuse` debug view: direct diffuse light only,
-//   Σ_lights k_d·O_d·I_l·max(0, N·L)·V/d²
-// with inverse-square falloff whatever the scene's attenuation (d = 1 for a
-// directional light), V = 1 only when nothing at all blocks the light (every
-// occluder opaque), and no ambient, specular, reflection or refraction.
-fn diffuse_only(s: Surface, m: GpuMaterial) -> vec3<f32> {
-    var color = vec3<f32>(0.0);
-    for (var i = 0u; i < uniforms.light_count; i++) {
-        let light = lights[i];
-        var l = -light.position;
-        var distance = MISS;
-        var falloff = 1.0;
-        if light.kind != LIGHT_DIRECTIONAL {
-            let to_light = light.position - s.point;
-            distance = length(to_light);
-            l = to_light / distance;
-            falloff = 1.0 / (distance * distance);
-        }
-        let n_dot_l = dot(s.shading, l);
-        if n_dot_l <= 0.0 || dot(s.geometric, l) <= 0.0 {
-            continue;
-        }
-        let eps = ray_epsilon(s.point);
-        let blocked = traverse(Ray(s.point + s.geometric * eps, l), 0.0, distance - eps, true, false).t != MISS;
-        if !blocked {
-            color += m.kd * m.color * light.radiance * n_dot_l * falloff;
-        }
-    }
-    return color;
 }

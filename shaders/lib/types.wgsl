@@ -44,9 +44,11 @@ struct DispatchParams {
     pixel_filter: u32,
     // What the kernel writes per pixel (a VIEW_ constant).
     view: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // The image pixel the accumulation buffer's first entry holds, and the
+    // width of its rows: a tile accumulates in a buffer of its own size.
+    tile_x: u32,
+    tile_y: u32,
+    tile_width: u32,
 }
 
 struct GpuLight {

@@ -34,6 +34,8 @@ pub fn channels(view: View) -> Channels {
         View::Depth => Channels::Single("Z"),
         View::Id => Channels::Single("id"),
         View::Heatmap => Channels::Single("nodes"),
+        View::RayDepth => Channels::Single("depth"),
+        View::RayCount => Channels::Single("rays"),
         _ => Channels::Rgb,
     }
 }
@@ -42,6 +44,11 @@ pub fn channels(view: View) -> Channels {
 /// `scale` is the view scale the image was resolved with, `bvh_nodes` and
 /// `objects` the scene's counts.
 pub fn legend(view: View, image: &Image, scale: f32, bvh_nodes: usize, objects: usize) -> Option<String> {
+    let tree_range = || {
+        hit_range(image, |_| true).map_or(String::new(), |(min, max, mean)| {
+            format!("; this image {} to {}, mean {}", short(min.into()), short(max.into()), short(mean))
+        })
+    };
     let nothing = "the eye rays hit nothing";
     Some(match view {
         View::Shaded => return None,
@@ -92,6 +99,16 @@ ambient, highlights or mirrors; brightest value {}",
                 short(scale.into())
             )
         }
+        View::RayDepth => format!(
+            "ray-depth: the deepest level each pixel's ray tree reached (the eye ray is level 1, each reflection or refraction one more), blue at 0 through green to red at {} (the maximum depth){}",
+            short(scale.into()),
+            tree_range()
+        ),
+        View::RayCount => format!(
+            "ray-count: rays each pixel traced (eye, shadow, reflected, refracted), blue at 0 through green to red at {} ((1 + lights) × maximum depth) and beyond{}",
+            short(scale.into()),
+            tree_range()
+        ),
     })
 }
 

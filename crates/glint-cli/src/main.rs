@@ -4,10 +4,12 @@ mod bench;
 mod check;
 mod compare;
 mod info;
+mod probe;
 mod legend;
 mod render;
 mod scene_arg;
 mod spd;
+mod stitch;
 mod test;
 mod view;
 
@@ -22,7 +24,8 @@ pub mod exit {
     pub const DIFFERENT: u8 = 1;
     /// The command line was wrong (clap's own code).
     pub const USAGE: u8 = 2;
-    /// A scene file could not be read or is malformed.
+    /// A scene file could not be read or is malformed; `glint stitch`: a part
+    /// cannot be read or the parts do not make one image.
     pub const INPUT: u8 = 3;
     /// No usable GPU, or the GPU failed.
     pub const GPU: u8 = 4;
@@ -53,10 +56,14 @@ enum Command {
     View(view::ViewArgs),
     /// Write one of the Standard Procedural Databases as an NFF file.
     Spd(spd::SpdArgs),
+    /// Follow one pixel's rays: the camera frame and the whole ray tree with every term it adds.
+    Probe(probe::ProbeArgs),
     /// Compare two images (.png, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
     Compare(compare::CompareArgs),
     /// Render a suite of scenes and compare each with its golden image.
     Test(test::TestArgs),
+    /// Assemble the parts of an image rendered with --region or --shard.
+    Stitch(stitch::StitchArgs),
 }
 
 /// An error with the exit code it maps to.
@@ -111,8 +118,10 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(&args),
         Command::View(args) => view::run(args),
         Command::Spd(args) => spd::run(&args),
+        Command::Probe(args) => probe::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Test(args) => test::run(&args),
+        Command::Stitch(args) => stitch::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -6,7 +6,8 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Format, Gpu, Image, PngBits, RayStats, RenderOptions, Renderer, ToneMap};
+use glint_gpu::stitch::Placement;
+use glint_gpu::{Acceleration, Format, Gpu, Image, PngBits, RayStats, Region, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
 use glint_scene::scene::MAX_DEPTH_LIMIT;
 use glint_scene::scene::MAX_IMAGE_SIDE;
@@ -28,6 +29,15 @@ pub struct RenderArgs {
     /// Image height in pixels (default: the scene's; alone, the scene's aspect ratio is kept)
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_IMAGE_SIDE)))]
     height: Option<u32>,
+    /// Render only the pixels X0 <= x < X1, Y0 <= y < Y1 of the image (row 0 at
+    /// the top), exactly as they are in the whole render; where they belong is
+    /// written beside each output as OUTPUT.json, for `glint stitch`
+    #[arg(long, num_args = 4, value_names = ["X0", "Y0", "X1", "Y1"], conflicts_with = "shard")]
+    region: Option<Vec<u32>>,
+    /// Render the I-th of N horizontal strips of the image (I from 0 to N-1),
+    /// as --region would, for `glint stitch` to assemble
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    shard: Option<(u32, u32)>,
     /// Longest ray path, the eye ray counting as depth 1 (default: the scene's, else 5)
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_DEPTH_LIMIT)))]
     max_depth: Option<u32>,
@@ -105,6 +115,8 @@ enum ViewArg {
     Diffuse,
     Id,
     Heatmap,
+    RayDepth,
+    RayCount,
 }
 
 impl ViewArg {
@@ -117,6 +129,8 @@ impl ViewArg {
             ViewArg::Diffuse => View::Diffuse,
             ViewArg::Id => View::Id,
             ViewArg::Heatmap => View::Heatmap,
+            ViewArg::RayDepth => View::RayDepth,
+            ViewArg::RayCount => View::RayCount,
         }
     }
 }
@@ -141,6 +155,41 @@ fn parse_aov(s: &str) -> Result<(ViewArg, PathBuf), String> {
     }
 }
 
+fn parse_shard(s: &str) -> Result<(u32, u32), String> {
+    let numbers = s.split_once('/').and_then(|(i, n)| Some((i.parse::<u32>().ok()?, n.parse::<u32>().ok()?)));
+    match numbers {
+        Some((_, 0)) => Err(format!("`{s}`: N, the number of shards, must be at least 1")),
+        Some((i, n)) if i >= n => {
+            Err(format!("`{s}`: shards count from 0, so I must be below N (0/{n} to {}/{n})", n - 1))
+        }
+        Some(shard) => Ok(shard),
+        None => Err(format!("`{s}` is not I/N: give the shard's index from 0 and the number of shards, as in 0/4")),
+    }
+}
+
+/// The part of the `width` × `height` image to render: all of it, the
+/// `--region` or the `--shard`.
+fn render_region(args: &RenderArgs, width: u32, height: u32) -> Result<Region, Failure> {
+    if let Some(&[x0, y0, x1, y1]) = args.region.as_deref() {
+        let region = Region { x0, y0, x1, y1 };
+        if region.is_empty() || !Region::whole(width, height).contains(&region) {
+            return Err(Failure::new(
+                exit::USAGE,
+                format!("--region {region}: must be X0 < X1 <= {width} and Y0 < Y1 <= {height}, inside the {width}x{height} image"),
+            ));
+        }
+        return Ok(region);
+    }
+    match args.shard {
+        Some((_, count)) if count > height => Err(Failure::new(
+            exit::USAGE,
+            format!("--shard: the {width}x{height} image has only {height} rows, so it splits into at most {height} shards, not {count}"),
+        )),
+        Some((index, count)) => Ok(Region::whole(width, height).strip(index, count)),
+        None => Ok(Region::whole(width, height)),
+    }
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum ToneMapArg {
     Clamp,
@@ -158,7 +207,7 @@ fn finite_positive(s: &str) -> Result<f32, String> {
 
 /// Refuses, before any work, an output path whose format Glint cannot write
 /// (a usage error) or that cannot be created (the output code).
-fn check_output(path: &std::path::Path) -> Result<(), Failure> {
+pub fn check_output(path: &std::path::Path) -> Result<(), Failure> {
     glint_gpu::check_output_path(path).map(|_| ()).map_err(|e| match e {
         glint_gpu::OutputPathError::Format(m) => Failure::new(exit::USAGE, m),
         glint_gpu::OutputPathError::Unwritable(m) => Failure::new(exit::OUTPUT, m),
@@ -241,6 +290,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         eprintln!("glint: warning: {warning}");
     }
     let (width, height) = image_size(args.width, args.height, (scene.width, scene.height))?;
+    let region = render_region(args, width, height)?;
     if let Some(d) = args.max_depth {
         scene.render.max_depth = d;
     }
@@ -275,7 +325,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     };
     let bar = progress_bar(args.quiet);
     let start = Instant::now();
-    let (image, stats) = renderer.render(&prepared.buffers, &options, &mut |done, total| {
+    let (image, stats) = renderer.render_region(&prepared.buffers, region, &options, &mut |done, total| {
         if start.elapsed() > Duration::from_secs(1) && bar.is_hidden() && !args.quiet && std::io::stderr().is_terminal() {
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
@@ -292,22 +342,27 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     for (aov, path) in &args.aov {
         let aov_view = aov.view();
         let aov_options = RenderOptions { view: aov_view, spp: 1, view_scale: prepared.view_scale(aov_view), ..options };
-        let (image, _) = renderer.render(&prepared.buffers, &aov_options, &mut |_, _| {})?;
+        let (image, _) = renderer.render_region(&prepared.buffers, region, &aov_options, &mut |_, _| {})?;
         outputs.push((if aov_view == View::Depth { image.with_misses_at_infinity() } else { image }, path, aov_view));
     }
     let bits = match args.bits {
         BitsArg::Eight => PngBits::Eight,
         BitsArg::Sixteen => PngBits::Sixteen,
     };
+    let part = (region != Region::whole(width, height)).then_some(Placement { width, height, region });
     for (image, path, view) in &outputs {
         glint_gpu::write_image_channels(image, path, bits, crate::legend::channels(*view))?;
+        if let Some(placement) = &part {
+            glint_gpu::stitch::write_placement(path, placement)?;
+        }
     }
 
     if !args.quiet {
+        let part = if part.is_some() { format!(" (region {region} of {width}x{height})") } else { String::new() };
         eprintln!(
-            "glint: rendered {}x{} in {:.3} s, {:.2} Mrays/s ({} rays) -> {}",
-            width,
-            height,
+            "glint: rendered {}x{}{part} in {:.3} s, {:.2} Mrays/s ({} rays) -> {}",
+            region.width(),
+            region.height(),
             elapsed.as_secs_f64(),
             stats.total() as f64 / elapsed.as_secs_f64() / 1e6,
             stats.total(),

@@ -177,14 +177,13 @@ fn nff_scenes_render_with_either_angle_reading() {
 }
 
 #[test]
-fn an_image_beyond_the_device_limits_names_the_limit_and_the_need() {
+fn an_image_beyond_what_the_device_holds_at_once_renders_in_tiles() {
+    // 4100 × 2100 is 8.6 Mpixels, more than lavapipe's 128 MiB storage
+    // buffers hold at 16 bytes a pixel; the cheap depth view keeps it quick.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("huge.png");
-    let o = glint(&["render", scenes().join("showcase.toml").to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "16384", "--height", "16384"]);
-    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
-    let err = stderr(&o);
-    assert!(err.contains("the accumulation image") && err.contains(&(16384u64 * 16384 * 16).to_string()), "{err}");
-    assert!(err.contains("max_storage_buffer_binding_size") || err.contains("max_buffer_size"), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    let scene = scenes().join("showcase.toml");
+    let o = glint(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--width", "4100", "--height", "2100", "--view", "depth", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::image_dimensions(&out).unwrap(), (4100, 2100));
 }

@@ -64,7 +64,7 @@ fn usage_errors_are_shown_in_full_as_clap_explains_them() {
         (&["render", "a.toml"], &["the following required arguments were not provided", "--output <OUTPUT>", "Usage: glint render"]),
         (&["render", &s, "-o", &out, "--json"], &["the following required arguments were not provided", "--stats"]),
         (&["rendr", &s], &["unrecognized subcommand 'rendr'", "a similar subcommand exists: 'render'"]),
-        (&["render", &s, "-o", &out, "--view", "depht"], &["[possible values: shaded, normal, depth, albedo, diffuse, id, heatmap]"]),
+        (&["render", &s, "-o", &out, "--view", "depht"], &["[possible values: shaded, normal, depth, albedo, diffuse, id, heatmap, ray-depth, ray-count]"]),
         (&["render", &s, "-o", &out, "--tone-map", "filmic"], &["[possible values: clamp, reinhard, aces]"]),
         (&["render", &s, "-o", &out, "--exposure", "-1"], &["'--exposure <EXPOSURE>': the exposure must be a positive number, found -1"]),
         (&["render", &s, "-o", &out, "--aov", "dpeth=d.pfm"], &["unknown AOV `dpeth` (did you mean `depth`?)"]),

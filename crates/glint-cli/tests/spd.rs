@@ -54,3 +54,40 @@ fn a_bad_spd_name_or_size_is_one_line_and_a_usage_error() {
         assert!(!message.contains("panicked"), "{args:?}: {message}");
     }
 }
+
+#[test]
+fn probe_prints_the_camera_frame_and_the_ray_tree() {
+    let o = glint(&["probe", "spd:balls:1", "256", "256", "--width", "512", "--height", "512"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    for needle in ["e = (2.1, 1.3, 1.7)", "u = ", "v = ", "w = ", "screen point s = ", "#0 eye ray, depth 1", "shadow ray to light", "reflect ray, depth 2"] {
+        assert!(text.contains(needle), "{needle} missing in:\n{text}");
+    }
+
+    let o = glint(&["probe", "spd:balls:1", "256", "256", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&String::from_utf8(o.stdout).unwrap()).unwrap();
+    assert_eq!(v["pixel"], serde_json::json!([256, 256]));
+    for key in ["e", "u", "v", "w"] {
+        assert_eq!(v["camera"][key].as_array().map(Vec::len), Some(3), "camera.{key}");
+    }
+    let rays = v["rays"].as_array().unwrap();
+    assert!(rays[0]["parent"].is_null() && rays[0]["kind"] == "eye");
+    let sum = (0..3).map(|c| rays.iter().map(|r| r["contribution"][c].as_f64().unwrap()).sum::<f64>());
+    for (c, total) in sum.enumerate() {
+        let color = v["color"][c].as_f64().unwrap();
+        assert!((total - color).abs() <= 1e-5 * color.abs().max(1e-2), "channel {c}: {total} vs {color}");
+    }
+    for key in ["id", "parent", "kind", "depth", "origin", "dir", "t", "object", "weight", "contribution"] {
+        assert!(rays.iter().all(|r| r.get(key).is_some()), "rays lack `{key}`");
+    }
+}
+
+#[test]
+fn probe_outside_the_image_is_one_clear_usage_error() {
+    let o = glint(&["probe", "spd:tetra:1", "512", "3"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let message = stderr(&o);
+    assert_eq!(message.lines().count(), 1, "{message}");
+    assert!(message.contains("pixel (512, 3) is outside the 512 x 512 image: X is 0 to 511"), "{message}");
+}

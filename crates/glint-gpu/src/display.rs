@@ -29,7 +29,7 @@ fn mapped(v: [f32; 3], options: &RenderOptions) -> [f32; 3] {
         }
         View::Depth => [if v[0] < 1.0e38 { 1.0 - (v[0] / options.view_scale).clamp(0.0, 1.0) } else { 0.0 }; 3],
         View::Id => if v[0] >= 0.0 { id_colour(v[0]) } else { [0.0; 3] },
-        View::Heatmap => heat_ramp(v[0] / options.view_scale),
+        View::Heatmap | View::RayDepth | View::RayCount => heat_ramp(v[0] / options.view_scale),
         View::Shaded | View::Albedo | View::Diffuse => {
             tone_map(v.map(|c| finite_or_zero(c).max(0.0)), options.tone_map).map(|c| srgb_encode(c.clamp(0.0, 1.0)))
         }

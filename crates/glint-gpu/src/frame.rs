@@ -27,6 +27,9 @@ pub struct Prepared {
     pub bvh_build: Duration,
     /// Distance from the eye to the farthest corner of the scene's bounds.
     pub depth_extent: f32,
+    /// The scene's longest ray path and its lights, which bound the ray tree.
+    pub max_depth: u32,
+    pub lights: u32,
 }
 
 impl Prepared {
@@ -36,6 +39,9 @@ impl Prepared {
             View::Depth => self.depth_extent,
             // Twice the depth of a balanced tree is a busy pixel.
             View::Heatmap => 2.0 * (self.bvh_nodes.max(2) as f32).log2() + 8.0,
+            View::RayDepth => self.max_depth as f32,
+            // A path to the deepest level with a shadow ray per light at every hit.
+            View::RayCount => ((1 + self.lights) * self.max_depth) as f32,
             _ => 1.0,
         }
     }
@@ -65,6 +71,14 @@ impl Renderer {
             .map(|corner| corner.distance(eye))
             .fold(0.0f32, f32::max)
             .max(f32::MIN_POSITIVE);
-        Ok(Prepared { buffers, primitives: bounds.len(), bvh_nodes: bvh.nodes.len(), bvh_build, depth_extent })
+        Ok(Prepared {
+            buffers,
+            primitives: bounds.len(),
+            bvh_nodes: bvh.nodes.len(),
+            bvh_build,
+            depth_extent,
+            max_depth: scene.render.max_depth,
+            lights: packed.light_count,
+        })
     }
 }

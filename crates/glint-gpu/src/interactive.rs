@@ -11,7 +11,7 @@ use glint_scene::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParam
 
 use crate::renderer::{create_pipeline, STAT_BYTES};
 use crate::shaders::{Kernel, ShaderSource};
-use crate::{GpuError, RayStats, RenderOptions, Renderer, SceneBuffers};
+use crate::{GpuError, RayStats, Region, RenderOptions, Renderer, SceneBuffers};
 
 /// Bytes of one accumulation pixel (rgb sum and sample count).
 const PIXEL_BYTES: u64 = 16;
@@ -57,6 +57,23 @@ impl SceneBuffers {
     /// How many lights the lights buffer holds.
     pub fn light_capacity(&self) -> usize {
         (self.lights.size() / std::mem::size_of::<GpuLight>() as u64) as usize
+    }
+
+    /// Whether the accumulation holds every pixel of the image, as progressive
+    /// rendering, presenting and picking need. An image too large for the
+    /// device is held a tile at a time and renders only through `render`.
+    pub fn holds_whole_image(&self) -> bool {
+        self.accum_pixels == u64::from(self.width) * u64::from(self.height)
+    }
+
+    pub(crate) fn check_whole_image(&self) -> Result<(), GpuError> {
+        if self.holds_whole_image() {
+            return Ok(());
+        }
+        Err(GpuError::Region(format!(
+            "the {}x{} image is too large for the device to hold at once ({} pixels fit): it renders only tile by tile",
+            self.width, self.height, self.accum_pixels
+        )))
     }
 
     /// How many materials the materials buffer holds.
@@ -129,22 +146,24 @@ impl Renderer {
 
     /// Adds sample `sample_index` to the pixels of `rows` and returns without
     /// waiting for the device. Ray counts add up on the device until a
-    /// `RayCounter` collects them.
+    /// `RayCounter` collects them. Does nothing unless the scene's
+    /// accumulation holds the whole image.
     pub fn trace_rows(&self, scene: &SceneBuffers, sample_index: u32, options: &RenderOptions, rows: Range<u32>) {
         let rows = rows.start.min(scene.height)..rows.end.min(scene.height);
-        if rows.is_empty() {
+        if rows.is_empty() || !scene.holds_whole_image() {
             return;
         }
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode_band(scene, sample_index, options, rows, &mut encoder);
+        self.encode_band(scene, Region::whole(scene.width, scene.height), sample_index, options, rows, &mut encoder);
         self.queue.submit([encoder.finish()]);
     }
 
     /// Empties the accumulated samples of `rows`, so the next sample traced
-    /// there starts them over while the other rows keep theirs.
+    /// there starts them over while the other rows keep theirs. Does nothing
+    /// unless the scene's accumulation holds the whole image.
     pub fn clear_rows(&self, scene: &SceneBuffers, rows: Range<u32>) {
         let (start, end) = (rows.start.min(scene.height), rows.end.min(scene.height));
-        if start >= end {
+        if start >= end || !scene.holds_whole_image() {
             return;
         }
         let row_bytes = u64::from(scene.width) * PIXEL_BYTES;
@@ -198,8 +217,10 @@ impl Renderer {
         if x >= scene.width || y >= scene.height {
             return Ok(None);
         }
+        scene.check_whole_image()?;
         let slot = (u64::from(y) * u64::from(scene.width) + u64::from(x)) * PIXEL_BYTES;
-        let region = DispatchParams { origin: [x, y], end: [x + 1, y + 1], sample_count: 1, ..Zeroable::zeroed() };
+        let region =
+            DispatchParams { origin: [x, y], end: [x + 1, y + 1], sample_count: 1, tile_width: scene.width, ..Zeroable::zeroed() };
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let saved = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("pick saved pixel"),

@@ -7,9 +7,12 @@ pub mod display;
 pub mod frame;
 pub mod interactive;
 pub mod output;
+pub mod probe;
 pub mod renderer;
 pub mod schedule;
 pub mod shaders;
+pub mod stitch;
+pub mod tiles;
 
 pub use device::{Gpu, ADAPTER_ENV};
 pub use frame::{Acceleration, Prepared};
@@ -18,6 +21,7 @@ pub use output::{
     OutputPathError, PngBits,
 };
 pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
+pub use tiles::Region;
 
 /// Everything that can go wrong on the GPU side, one line each.
 #[derive(Debug, thiserror::Error)]
@@ -32,6 +36,13 @@ pub enum GpuError {
     Limit { what: String, limit: &'static str, need: u64, have: u64 },
     #[error("GPU error: {0}")]
     Runtime(String),
+    /// A region to render that is not part of the image, or an interactive
+    /// use of a scene whose image the device holds only in tiles.
+    #[error("{0}")]
+    Region(String),
+    /// Parts that cannot be read or do not make one image.
+    #[error("{0}")]
+    Stitch(String),
     #[error("{0}")]
     Output(String),
     #[error("the scene cannot be rendered: {0}")]

@@ -75,6 +75,17 @@ impl Image {
         [p[0], p[1], p[2]]
     }
 
+    /// Copies `part` into this image with its top-left corner at (`x`, `y`);
+    /// it must fit.
+    pub fn paste(&mut self, part: &Image, x: u32, y: u32) {
+        let (width, row) = (self.width as usize, part.width as usize);
+        for (r, (display, linear)) in part.display.chunks_exact(row).zip(part.linear.chunks_exact(row)).enumerate() {
+            let start = (y as usize + r) * width + x as usize;
+            self.display[start..start + row].copy_from_slice(display);
+            self.linear[start..start + row].copy_from_slice(linear);
+        }
+    }
+
     /// Replaces the kernel's miss marker in a depth image by +∞.
     pub fn with_misses_at_infinity(mut self) -> Self {
         for p in &mut self.linear {

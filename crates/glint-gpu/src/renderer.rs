@@ -12,6 +12,7 @@ use wgpu::util::DeviceExt;
 
 use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::shaders::{Kernel, ShaderSource};
+use crate::tiles::Region;
 use crate::{GpuError, Image};
 
 /// How linear radiance becomes a display value.
@@ -100,6 +101,9 @@ impl std::ops::Add for RayStats {
 const STAT_SLOTS: u64 = 1024;
 /// Size of the stats buffer.
 pub(crate) const STAT_BYTES: u64 = STAT_SLOTS * STAT_COUNT as u64 * 4;
+/// Bytes of one accumulated pixel (rgb sum and sample count), and of one
+/// resolved pixel of each image read back.
+const PIXEL_BYTES: u64 = 16;
 
 /// The compiled kernels on one device. Cheap to clone the device and queue
 /// handles into it, so the viewer can share eframe's device.
@@ -112,13 +116,16 @@ pub struct Renderer {
     /// without the ray tree compiles to far leaner code.
     pub(crate) primary: wgpu::ComputePipeline,
     /// The bind group layout `trace` and `primary` share.
-    scene_layout: wgpu::BindGroupLayout,
+    pub(crate) scene_layout: wgpu::BindGroupLayout,
     pub(crate) resolve: wgpu::ComputePipeline,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
     /// Band sizes of batch renders, kept from frame to frame so the next one
     /// starts with bands of the right size.
     bands: Mutex<BandScheduler>,
+    /// The most pixels a tile may have, below what the device's buffer limits
+    /// allow (`None`: only those limits).
+    max_tile_pixels: Option<u64>,
 }
 
 /// A scene uploaded for one image size.
@@ -129,6 +136,9 @@ pub struct SceneBuffers {
     pub(crate) uniforms: wgpu::Buffer,
     pub(crate) dispatch: wgpu::Buffer,
     pub(crate) accum: wgpu::Buffer,
+    /// Pixels the accumulation buffer holds: the whole image when it fits the
+    /// device, else the largest tile that does.
+    pub(crate) accum_pixels: u64,
     pub(crate) stats: wgpu::Buffer,
     pub(crate) scene_bind: wgpu::BindGroup,
     pub(crate) materials: wgpu::Buffer,
@@ -153,7 +163,25 @@ impl Renderer {
         device.set_device_lost_callback(move |reason, message| {
             *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
         });
-        Ok(Self { device, queue, trace, primary, scene_layout, resolve, lost, bands: Mutex::new(BandScheduler::new(BATCH_TARGET)) })
+        Ok(Self {
+            device,
+            queue,
+            trace,
+            primary,
+            scene_layout,
+            resolve,
+            lost,
+            bands: Mutex::new(BandScheduler::new(BATCH_TARGET)),
+            max_tile_pixels: None,
+        })
+    }
+
+    /// Limits tiles to `pixels` pixels for the scenes uploaded from now on, as
+    /// if the device could hold no more: tiled renders can then be tested at
+    /// sizes any device holds whole.
+    pub fn with_max_tile_pixels(mut self, pixels: u64) -> Self {
+        self.max_tile_pixels = Some(pixels.max(1));
+        self
     }
 
     pub fn device(&self) -> &wgpu::Device {
@@ -161,22 +189,25 @@ impl Renderer {
     }
 
     /// Uploads `scene` for rendering at `width` × `height`, checking the device's
-    /// buffer limits first.
+    /// buffer limits first. The accumulation buffer holds the whole image if
+    /// the device can bind it, else the largest tile it can: any image size
+    /// renders, tile by tile.
     pub fn upload(&self, scene: &GpuScene, uniforms: SceneUniforms) -> Result<SceneBuffers, GpuError> {
         let (width, height) = (uniforms.width, uniforms.height);
         let limits = self.device.limits();
-        let accum_bytes = u64::from(width) * u64::from(height) * 16;
-        let arrays: [(&str, &[u8]); 7] = [
+        let device_pixels = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size) / PIXEL_BYTES;
+        let accum_pixels =
+            (u64::from(width) * u64::from(height)).min(device_pixels).min(self.max_tile_pixels.unwrap_or(u64::MAX)).max(1);
+        let arrays: [(&str, &[u8]); 6] = [
             ("primitives", bytemuck::cast_slice(&scene.prims)),
             ("BVH nodes", bytemuck::cast_slice(&scene.nodes)),
             ("materials", bytemuck::cast_slice(&scene.materials)),
             ("lights", bytemuck::cast_slice(&scene.lights)),
             ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
             ("BVH grids", bytemuck::cast_slice(&scene.grids)),
-            ("the accumulation image", &[]),
         ];
         for (what, bytes) in arrays {
-            let need = if bytes.is_empty() { accum_bytes } else { bytes.len() as u64 };
+            let need = bytes.len() as u64;
             for (limit, have) in [
                 ("max_storage_buffer_binding_size", u64::from(limits.max_storage_buffer_binding_size)),
                 ("max_buffer_size", limits.max_buffer_size),
@@ -211,7 +242,7 @@ impl Renderer {
         let dispatch = uniform("dispatch params", bytemuck::bytes_of(&DispatchParams::zeroed()));
         let accum = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accum"),
-            size: accum_bytes,
+            size: accum_pixels * PIXEL_BYTES,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -232,7 +263,7 @@ impl Renderer {
             layout: &self.scene_layout,
             entries: &entries,
         });
-        let scene_bytes = arrays[..6].iter().map(|(_, b)| b.len() as u64).sum();
+        let scene_bytes = arrays.iter().map(|(_, b)| b.len() as u64).sum();
         Ok(SceneBuffers {
             width,
             height,
@@ -240,6 +271,7 @@ impl Renderer {
             uniforms: uniforms_buffer,
             dispatch,
             accum,
+            accum_pixels,
             stats,
             scene_bind,
             materials,
@@ -249,17 +281,51 @@ impl Renderer {
     }
 
     /// Renders `options.spp` samples per pixel and resolves them, calling
-    /// `progress(done, total)` (in rows) after each dispatch.
+    /// `progress(done, total)` (in pixel samples) after each dispatch.
     pub fn render(
         &self,
         scene: &SceneBuffers,
         options: &RenderOptions,
         progress: &mut dyn FnMut(u64, u64),
     ) -> Result<(Image, RayStats), GpuError> {
+        self.render_region(scene, Region::whole(scene.width, scene.height), options, progress)
+    }
+
+    /// Renders the pixels of `region` alone, exactly as they are in a render
+    /// of the whole image, tile by tile: each tile is traced, resolved and read
+    /// back in turn, so the host holds the region's image and one tile.
+    pub fn render_region(
+        &self,
+        scene: &SceneBuffers,
+        region: Region,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u64, u64),
+    ) -> Result<(Image, RayStats), GpuError> {
+        if region.is_empty() || !Region::whole(scene.width, scene.height).contains(&region) {
+            return Err(GpuError::Region(format!(
+                "the region {region} (x0 y0 x1 y1) is empty or not inside the {}x{} image",
+                scene.width, scene.height
+            )));
+        }
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = (|| {
-            let stats = self.trace_frame(scene, options, progress)?;
-            Ok((self.resolve(scene, options)?, stats))
+            let pixels = region.pixels() as usize;
+            let mut image = Image {
+                width: region.width(),
+                height: region.height(),
+                display: vec![[0.0; 4]; pixels],
+                linear: vec![[0.0; 4]; pixels],
+            };
+            let mut stats = RayStats::default();
+            let total = u64::from(options.spp) * region.pixels();
+            let mut done = 0;
+            for tile in region.tiles(scene.accum_pixels) {
+                stats = stats + self.trace_tile(scene, tile, options, &mut |pixels| progress(done + pixels, total))?;
+                done += u64::from(options.spp) * tile.pixels();
+                let part = self.resolve_buffer(&scene.accum, tile.width(), tile.height(), options)?;
+                image.paste(&part, tile.x0 - region.x0, tile.y0 - region.y0);
+            }
+            Ok((image, stats))
         })();
         let scoped = pollster::block_on(scope.pop());
         if let Some(reason) = self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone() {
@@ -271,59 +337,73 @@ impl Renderer {
         result
     }
 
-    /// Accumulates `options.spp` samples per pixel from scratch, without
-    /// resolving: what a frame costs on the device.
+    /// Accumulates `options.spp` samples per pixel from scratch over the whole
+    /// image, tile by tile, without resolving: what a frame costs on the device.
     pub fn trace_frame(
         &self,
         scene: &SceneBuffers,
         options: &RenderOptions,
         progress: &mut dyn FnMut(u64, u64),
     ) -> Result<RayStats, GpuError> {
-        self.clear(scene);
-        let mut stats = RayStats::default();
-        let total = u64::from(options.spp) * u64::from(scene.height);
-        for sample in 0..options.spp {
-            let done = u64::from(sample) * u64::from(scene.height);
-            stats = stats + self.trace_sample(scene, sample, options, &mut |rows| progress(done + rows, total))?;
+        let image = Region::whole(scene.width, scene.height);
+        let total = u64::from(options.spp) * image.pixels();
+        let (mut stats, mut done) = (RayStats::default(), 0);
+        for tile in image.tiles(scene.accum_pixels) {
+            stats = stats + self.trace_tile(scene, tile, options, &mut |pixels| progress(done + pixels, total))?;
+            done += u64::from(options.spp) * tile.pixels();
         }
         Ok(stats)
     }
 
-    /// Empties the accumulation buffer (a progressive render starts over).
-    pub fn clear(&self, scene: &SceneBuffers) {
+    /// Accumulates `options.spp` samples per pixel of `tile` from scratch in
+    /// the accumulation buffer, calling `progress(pixel samples done)`.
+    fn trace_tile(
+        &self,
+        scene: &SceneBuffers,
+        tile: Region,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u64),
+    ) -> Result<RayStats, GpuError> {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         encoder.clear_buffer(&scene.accum, 0, None);
         self.queue.submit([encoder.finish()]);
+        let mut stats = RayStats::default();
+        for sample in 0..options.spp {
+            let done = u64::from(sample) * tile.pixels();
+            stats = stats + self.trace_sample(scene, tile, sample, options, &mut |pixels| progress(done + pixels))?;
+        }
+        Ok(stats)
     }
 
-    /// Adds sample `sample_index` to every pixel, in bands of rows, calling
-    /// `progress(rows done)` after each band.
-    pub fn trace_sample(
+    /// Adds sample `sample_index` to every pixel of `tile`, in bands of rows,
+    /// calling `progress(pixels done)` after each band.
+    fn trace_sample(
         &self,
         scene: &SceneBuffers,
+        tile: Region,
         sample_index: u32,
         options: &RenderOptions,
         progress: &mut dyn FnMut(u64),
     ) -> Result<RayStats, GpuError> {
-        let (width, height) = (scene.width, scene.height);
+        let width = tile.width();
         let stats_readback = self.readback_buffer(STAT_BYTES);
         let mut stats = RayStats::default();
-        let mut y = 0;
-        while y < height {
+        let mut y = tile.y0;
+        while y < tile.y1 {
             let band = match options.band_rows {
-                Some(rows) => rows.clamp(1, height - y),
-                None => self.bands.lock().unwrap_or_else(|e| e.into_inner()).rows(width, height - y),
+                Some(rows) => rows.clamp(1, tile.y1 - y),
+                None => self.bands.lock().unwrap_or_else(|e| e.into_inner()).rows(width, tile.y1 - y),
             };
             let mut encoder = self.device.create_command_encoder(&Default::default());
             encoder.clear_buffer(&scene.stats, 0, None);
-            self.encode_band(scene, sample_index, options, y..y + band, &mut encoder);
+            self.encode_band(scene, tile, sample_index, options, y..y + band, &mut encoder);
             encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_BYTES);
             let start = Instant::now();
             self.queue.submit([encoder.finish()]);
             let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&self.read(&stats_readback)?);
             stats.add_slots(&counts);
             y += band;
-            progress(u64::from(y));
+            progress(u64::from(y - tile.y0) * u64::from(width));
             if options.band_rows.is_none() {
                 self.bands.lock().unwrap_or_else(|e| e.into_inner()).record(width, band, start.elapsed());
             }
@@ -331,18 +411,23 @@ impl Renderer {
         Ok(stats)
     }
 
-    /// Records the dispatch that adds sample `sample_index` to `rows`.
+    /// Records the dispatch that adds sample `sample_index` to `rows` of
+    /// `tile`, the part of the image the accumulation buffer holds.
     pub(crate) fn encode_band(
         &self,
         scene: &SceneBuffers,
+        tile: Region,
         sample_index: u32,
         options: &RenderOptions,
         rows: std::ops::Range<u32>,
         encoder: &mut wgpu::CommandEncoder,
     ) {
         let region = DispatchParams {
-            origin: [0, rows.start],
-            end: [scene.width, rows.end],
+            origin: [tile.x0, rows.start],
+            end: [tile.x1, rows.end],
+            tile_x: tile.x0,
+            tile_y: tile.y0,
+            tile_width: tile.width(),
             sample_index,
             seed: options.seed,
             sample_count: options.spp,
@@ -364,9 +449,11 @@ impl Renderer {
         pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
     }
 
-    /// Turns the accumulated samples into display values (tone mapped, sRGB)
-    /// and linear values, and reads both back.
+    /// Turns the accumulated samples of an accumulation that holds the whole
+    /// image (the viewer's) into display values (tone mapped, sRGB) and linear
+    /// values, and reads both back.
     pub fn resolve(&self, scene: &SceneBuffers, options: &RenderOptions) -> Result<Image, GpuError> {
+        scene.check_whole_image()?;
         self.resolve_buffer(&scene.accum, scene.width, scene.height, options)
     }
 
@@ -383,7 +470,7 @@ impl Renderer {
 
     fn resolve_buffer(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
         let pixels = width * height;
-        let bytes = u64::from(pixels) * 16;
+        let bytes = u64::from(pixels) * PIXEL_BYTES;
         let params = ResolveParams {
             pixel_count: pixels,
             tone_map: options.tone_map as u32,

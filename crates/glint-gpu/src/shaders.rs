@@ -28,6 +28,7 @@ sources![
     "kernels/primary.wgsl",
     "kernels/resolve.wgsl",
     "kernels/present.wgsl",
+    "kernels/probe.wgsl",
     "lib/types.wgsl",
     "lib/bindings.wgsl",
     "lib/camera.wgsl",
@@ -44,6 +45,8 @@ sources![
     "lib/shadow.wgsl",
     "lib/shade.wgsl",
     "lib/dispatch.wgsl",
+    "lib/ray_tree.wgsl",
+    "lib/diffuse_view.wgsl",
     "lib/display.wgsl",
 ];
 
@@ -58,10 +61,12 @@ pub enum Kernel {
     Resolve,
     /// The same, into the viewer's texture.
     Present,
+    /// One pixel's ray tree, recorded.
+    Probe,
 }
 
 impl Kernel {
-    pub const ALL: [Kernel; 4] = [Kernel::Trace, Kernel::Primary, Kernel::Resolve, Kernel::Present];
+    pub const ALL: [Kernel; 5] = [Kernel::Trace, Kernel::Primary, Kernel::Resolve, Kernel::Present, Kernel::Probe];
 
     pub fn file(self) -> &'static str {
         match self {
@@ -69,6 +74,7 @@ impl Kernel {
             Kernel::Primary => "kernels/primary.wgsl",
             Kernel::Resolve => "kernels/resolve.wgsl",
             Kernel::Present => "kernels/present.wgsl",
+            Kernel::Probe => "kernels/probe.wgsl",
         }
     }
 
@@ -78,6 +84,7 @@ impl Kernel {
             Kernel::Primary => "primary_main",
             Kernel::Resolve => "resolve_main",
             Kernel::Present => "present_main",
+            Kernel::Probe => "probe_main",
         }
     }
 }

@@ -77,6 +77,8 @@ shared_constants! {
     VIEW_DIFFUSE: u32 = View::Diffuse as u32;
     VIEW_ID: u32 = View::Id as u32;
     VIEW_HEATMAP: u32 = View::Heatmap as u32;
+    VIEW_RAY_DEPTH: u32 = View::RayDepth as u32;
+    VIEW_RAY_COUNT: u32 = View::RayCount as u32;
 
     FILTER_BOX: u32 = Filter::Box as u32;
     FILTER_TENT: u32 = Filter::Tent as u32;
@@ -108,6 +110,21 @@ shared_constants! {
     RIGHT_LEAF: u32 = 1 << 30;
     /// The end of a traversal.
     NO_NODE: u32 = u32::MAX;
+
+    /// Kinds of rays in a probed ray tree (`ProbeRay::kind`).
+    RAY_EYE: u32 = 0;
+    RAY_REFLECT: u32 = 1;
+    RAY_REFRACT: u32 = 2;
+    RAY_SHADOW: u32 = 3;
+    /// No ray (the eye ray's parent) or no object.
+    NO_RAY: u32 = u32::MAX;
+    /// The most rays a probe records; a larger tree is cut off and says so.
+    PROBE_CAPACITY: u32 = 4096;
+    /// `ProbeRay::flags`.
+    PROBE_BACKFACE: u32 = 1;
+    PROBE_TOTAL_INTERNAL_REFLECTION: u32 = 2;
+    PROBE_SHADOW_TRACED: u32 = 4;
+    PROBE_BLOCKED: u32 = 8;
 }
 
 /// What the trace kernel writes per pixel; mirrored by the VIEW_ constants in
@@ -130,18 +147,22 @@ pub enum View {
     Id = 5,
     /// BVH nodes visited by the primary ray.
     Heatmap = 6,
+    /// The deepest level the pixel's ray tree reached (the eye ray is 1).
+    RayDepth = 7,
+    /// Rays the pixel's tree traced: eye, shadow, reflected and refracted.
+    RayCount = 8,
 }
 
 impl View {
     /// Views computed from the primary ray alone, through the pixel centre.
     pub fn is_primary_only(self) -> bool {
-        self != View::Shaded
+        !matches!(self, View::Shaded | View::RayDepth | View::RayCount)
     }
 
     /// Views of values rather than light (normal, depth, id, heat map): the
     /// exposure never scales them and they are not tone mapped.
     pub fn is_data(self) -> bool {
-        matches!(self, View::Normal | View::Depth | View::Id | View::Heatmap)
+        matches!(self, View::Normal | View::Depth | View::Id | View::Heatmap | View::RayDepth | View::RayCount)
     }
 }
 
@@ -206,9 +227,12 @@ pub struct DispatchParams {
     pub sample_count: u32,
     pub pixel_filter: u32,
     pub view: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+    /// The image pixel that the accumulation buffer's first entry holds, and
+    /// the width of the buffer's rows: a tile of a large image accumulates in
+    /// a buffer of its own size.
+    pub tile_x: u32,
+    pub tile_y: u32,
+    pub tile_width: u32,
 }
 
 #[repr(C)]
@@ -258,6 +282,48 @@ pub struct GpuPrim {
     pub object: u32,
     pub first: u32,
     pub count: u32,
+}
+
+/// One ray of a probed tree, as shaders/kernels/probe.wgsl records it.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ProbeRay {
+    pub origin: [f32; 3],
+    pub kind: u32,
+    pub dir: [f32; 3],
+    pub parent: u32,
+    pub weight: [f32; 3],
+    pub depth: u32,
+    pub point: [f32; 3],
+    pub t: f32,
+    pub geometric: [f32; 3],
+    pub object: u32,
+    pub shading: [f32; 3],
+    pub flags: u32,
+    pub ambient: [f32; 3],
+    pub eta: f32,
+    pub diffuse: [f32; 3],
+    pub n_dot_l: f32,
+    pub specular: [f32; 3],
+    pub distance: f32,
+    pub transmittance: [f32; 3],
+    pub light: u32,
+    pub cue_scale: f32,
+    pub material: u32,
+    pub blocker: u32,
+    pub _pad: u32,
+}
+
+/// The head of the probe kernel's buffer; `PROBE_CAPACITY` rays follow it.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ProbeHeader {
+    pub color: [f32; 3],
+    pub count: u32,
+    pub truncated: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
 
 /// The resolve and present kernels' uniforms: how accumulated samples become

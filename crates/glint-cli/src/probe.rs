@@ -1,0 +1,277 @@
+//! `glint probe`: one pixel's camera ray and its whole ray tree, as the kernels
+//! traced it, with every term each ray adds to the pixel, so a student can
+//! check a hand calculation against the lecture's trace(R).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use glint_gpu::probe::{Prober, RayTree};
+use glint_gpu::shaders::ShaderSource;
+use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
+use glint_scene::gpu_types::{
+    ProbeRay, MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_SHADOW_TRACED, PROBE_TOTAL_INTERNAL_REFLECTION,
+    RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
+};
+use glint_scene::scene::MAX_DEPTH_LIMIT;
+use glint_scene::{Projection, Scene, Shape};
+use serde_json::json;
+
+use crate::{exit, Failure};
+
+#[derive(Args)]
+pub struct ProbeArgs {
+    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]
+    #[arg(value_parser = crate::scene_arg::parse)]
+    scene: PathBuf,
+    /// Column of the pixel, from the left (0 is the first)
+    x: u32,
+    /// Row of the pixel, from the top (0 is the first)
+    y: u32,
+    /// Image width in pixels (default: the scene's)
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels (default: the scene's)
+    #[arg(long)]
+    height: Option<u32>,
+    /// Samples per pixel of the render: with more than 1 the first sample's ray is followed
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    spp: u32,
+    /// Seed of the sample jitter
+    #[arg(long, default_value_t = 0)]
+    seed: u32,
+    /// Longest ray path, the eye ray counting as depth 1 (default: the scene's, else 5)
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_DEPTH_LIMIT)))]
+    max_depth: Option<u32>,
+    /// Follow every reflection and refraction ray to the maximum depth
+    #[arg(long)]
+    no_cutoff: bool,
+    /// One JSON object on standard output
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: &ProbeArgs) -> Result<(), Failure> {
+    let mut scene = glint_scene::load(&args.scene).map_err(|e| Failure::new(exit::INPUT, e))?;
+    if let Some(d) = args.max_depth {
+        scene.render.max_depth = d;
+    }
+    if args.no_cutoff {
+        scene.render.cutoff = 0.0;
+    }
+    let (width, height) = (args.width.unwrap_or(scene.width), args.height.unwrap_or(scene.height));
+    if args.x >= width || args.y >= height {
+        return Err(Failure::new(
+            exit::USAGE,
+            format!("pixel ({}, {}) is outside the {width} x {height} image: X is 0 to {}, Y is 0 to {}", args.x, args.y, width - 1, height - 1),
+        ));
+    }
+    let gpu = Gpu::new()?;
+    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+    let prober = Prober::new(&renderer, &ShaderSource::Embedded)?;
+    let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
+    let options = RenderOptions { spp: args.spp, seed: args.seed, ..RenderOptions::default() };
+    let tree = prober.probe(&renderer, &prepared.buffers, args.x, args.y, &options)?;
+    let report = Report { scene: &scene, width, height, x: args.x, y: args.y, tree: &tree };
+    if args.json {
+        println!("{}", report.json());
+    } else {
+        print!("{}", report.text());
+    }
+    Ok(())
+}
+
+struct Report<'a> {
+    scene: &'a Scene,
+    width: u32,
+    height: u32,
+    x: u32,
+    y: u32,
+    tree: &'a RayTree,
+}
+
+fn v3(v: [f32; 3]) -> String {
+    format!("({}, {}, {})", num(v[0]), num(v[1]), num(v[2]))
+}
+
+fn num(v: f32) -> String {
+    let s = format!("{v:.5}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+fn kind_name(kind: u32) -> &'static str {
+    match kind {
+        RAY_EYE => "eye",
+        RAY_REFLECT => "reflect",
+        RAY_REFRACT => "refract",
+        _ => "shadow",
+    }
+}
+
+impl Report<'_> {
+    fn contribution(&self, ray: &ProbeRay) -> [f32; 3] {
+        let cue = self.scene.depth_cue.map(|d| d.color.into());
+        self.tree.contribution(ray, self.scene.background.into(), cue)
+    }
+
+    fn object(&self, index: u32) -> String {
+        let Some(object) = self.scene.objects.get(index as usize) else { return format!("object {index}") };
+        let shape = match object.shapes.as_slice() {
+            [Shape::Sphere { .. }] => "sphere".to_string(),
+            [Shape::Triangle { .. }] => "triangle".to_string(),
+            [Shape::Polygon { vertices }] => format!("{}-gon", vertices.len()),
+            [Shape::Cone { base_radius, apex_radius, .. }] if base_radius == apex_radius => "cylinder".to_string(),
+            [Shape::Cone { .. }] => "cone".to_string(),
+            shapes => format!("mesh of {} primitives", shapes.len()),
+        };
+        let material = self.scene.materials.get(object.material).map_or("?", |m| m.name.as_str());
+        format!("object {index} ({shape}, material \"{material}\")")
+    }
+
+    /// e, u, v, w, the view window and the screen point of the eye ray.
+    fn camera_lines(&self) -> Vec<String> {
+        let camera = &self.scene.camera;
+        let basis = camera.basis().expect("a loaded scene's camera has a basis");
+        let (r, t) = camera.half_extents(self.width, self.height);
+        let f = |v: glam::DVec3| v3(v.as_vec3().into());
+        let mut lines = vec![
+            format!("e = {}   (the eye)", v3(camera.eye.into())),
+            format!("u = {}   (right)", f(basis.u)),
+            format!("v = {}   (up)", f(basis.v)),
+            format!("w = {}   (backwards: from look_at towards the eye)", f(basis.w)),
+        ];
+        let eye_ray = &self.tree.rays[0];
+        let d = glam::Vec3::from(eye_ray.dir).as_dvec3();
+        match camera.projection {
+            Projection::Perspective { fov_y_degrees } => {
+                lines.push(format!(
+                    "view window at distance d = 1: l = {}, r = {}, b = {}, t = {} (vertical field of view {}°)",
+                    num(-r as f32), num(r as f32), num(-t as f32), num(t as f32), num(fov_y_degrees)
+                ));
+                let depth = -d.dot(basis.w);
+                let (us, vs) = (d.dot(basis.u) / depth, d.dot(basis.v) / depth);
+                lines.push(format!("screen point s = (u_s, v_s) = ({}, {})", num(us as f32), num(vs as f32)));
+                lines.push(format!("ray direction = normalize(-w + u_s·u + v_s·v) = {}", v3(eye_ray.dir)));
+            }
+            Projection::Orthographic { height } => {
+                lines.push(format!("orthographic, view window {} high: l = {}, r = {}, b = {}, t = {}", num(height), num(-r as f32), num(r as f32), num(-t as f32), num(t as f32)));
+                let o = glam::Vec3::from(eye_ray.origin).as_dvec3() - camera.eye.as_dvec3();
+                lines.push(format!("screen point s = (u_s, v_s) = ({}, {})", num(o.dot(basis.u) as f32), num(o.dot(basis.v) as f32)));
+                lines.push(format!("ray origin = e + u_s·u + v_s·v = {}, direction = -w", v3(eye_ray.origin)));
+            }
+        }
+        lines
+    }
+
+    fn text(&self) -> String {
+        let mut out = format!("pixel ({}, {}) of {} x {}\ncamera\n", self.x, self.y, self.width, self.height);
+        for line in self.camera_lines() {
+            out.push_str(&format!("  {line}\n"));
+        }
+        out.push_str(&format!("ray tree: the contributions add up to the pixel's linear colour {}\n", v3(self.tree.color)));
+        for (id, ray) in self.tree.rays.iter().enumerate() {
+            let indent = "  ".repeat(ray.depth as usize) + if ray.kind == RAY_SHADOW { "  " } else { "" };
+            out.push_str(&format!("{indent}#{id} {}\n", self.describe(ray).join(&format!("\n{indent}   "))));
+        }
+        if self.tree.truncated {
+            out.push_str("(the tree has more rays than the probe records; the rest are left out)\n");
+        }
+        out
+    }
+
+    fn describe(&self, ray: &ProbeRay) -> Vec<String> {
+        let contribution = v3(self.contribution(ray));
+        if ray.kind == RAY_SHADOW {
+            let blocked = ray.flags & PROBE_BLOCKED != 0;
+            let state = if ray.flags & PROBE_SHADOW_TRACED == 0 {
+                "shadows off: not traced".to_string()
+            } else if blocked {
+                format!("blocked by {}", self.object(ray.blocker))
+            } else if ray.transmittance != [1.0; 3] {
+                format!("let through, tinted S = {}", v3(ray.transmittance))
+            } else {
+                "reaches the light (S = 1)".to_string()
+            };
+            return vec![
+                format!("shadow ray to light {}, from {} towards {}", ray.light, v3(ray.origin), v3(ray.dir)),
+                format!("N·L = {}, distance {}, {state}", num(ray.n_dot_l), num(ray.distance)),
+                format!("diffuse {}, specular {}, contributes {contribution}", v3(ray.diffuse), v3(ray.specular)),
+            ];
+        }
+        let mut lines = vec![format!(
+            "{} ray, depth {}, weight {}, from {} along {}",
+            kind_name(ray.kind),
+            ray.depth,
+            v3(ray.weight),
+            v3(ray.origin),
+            v3(ray.dir)
+        )];
+        if ray.object == NO_RAY {
+            lines.push(format!("misses everything: the background, contributes {contribution}"));
+            return lines;
+        }
+        let side = if ray.flags & PROBE_BACKFACE != 0 { "back face (from inside)" } else { "front face" };
+        lines.push(format!("hits {} at t = {}, point {}, {side}", self.object(ray.object), num(ray.t), v3(ray.point)));
+        lines.push(format!("geometric normal {}, shading normal {}", v3(ray.geometric), v3(ray.shading)));
+        let mut local = format!("ambient {}", v3(ray.ambient));
+        if self.scene.depth_cue.is_some() {
+            local.push_str(&format!(", depth cue s_o = {}", num(ray.cue_scale)));
+        }
+        lines.push(format!("{local}, contributes {contribution} (its lights below)"));
+        if ray.flags & PROBE_TOTAL_INTERNAL_REFLECTION != 0 {
+            lines.push(format!("η = {}: total internal reflection, the transmitted share is reflected", num(ray.eta)));
+        } else if self.scene.materials[ray.material as usize].is_transmissive() {
+            lines.push(format!("refracts with η = n1/n2 = {}", num(ray.eta)));
+        }
+        lines
+    }
+
+    fn json(&self) -> serde_json::Value {
+        let camera = &self.scene.camera;
+        let basis = camera.basis().expect("a loaded scene's camera has a basis");
+        let d3 = |v: glam::DVec3| [v.x, v.y, v.z];
+        let rays: Vec<_> = self
+            .tree
+            .rays
+            .iter()
+            .enumerate()
+            .map(|(id, r)| {
+                let hit = r.object != NO_RAY && r.kind != RAY_SHADOW;
+                json!({
+                    "id": id,
+                    "parent": (r.parent != NO_RAY).then_some(r.parent),
+                    "kind": kind_name(r.kind),
+                    "depth": r.depth,
+                    "origin": r.origin,
+                    "dir": r.dir,
+                    "t": (r.t < MISS).then_some(r.t),
+                    "object": hit.then_some(r.object),
+                    "weight": r.weight,
+                    "contribution": self.contribution(r),
+                    "point": hit.then_some(r.point),
+                    "geometric_normal": hit.then_some(r.geometric),
+                    "shading_normal": hit.then_some(r.shading),
+                    "back_face": hit.then_some(r.flags & PROBE_BACKFACE != 0),
+                    "ambient": hit.then_some(r.ambient),
+                    "eta": hit.then_some(r.eta),
+                    "total_internal_reflection": hit.then_some(r.flags & PROBE_TOTAL_INTERNAL_REFLECTION != 0),
+                    "light": (r.kind == RAY_SHADOW).then_some(r.light),
+                    "n_dot_l": (r.kind == RAY_SHADOW).then_some(r.n_dot_l),
+                    "blocked": (r.kind == RAY_SHADOW).then_some(r.flags & PROBE_BLOCKED != 0),
+                    "blocker": (r.blocker != NO_RAY).then_some(r.blocker),
+                    "transmittance": (r.kind == RAY_SHADOW).then_some(r.transmittance),
+                    "diffuse": (r.kind == RAY_SHADOW).then_some(r.diffuse),
+                    "specular": (r.kind == RAY_SHADOW).then_some(r.specular),
+                })
+            })
+            .collect();
+        json!({
+            "pixel": [self.x, self.y],
+            "image": [self.width, self.height],
+            "color": self.tree.color,
+            "camera": { "e": camera.eye.to_array(), "u": d3(basis.u), "v": d3(basis.v), "w": d3(basis.w) },
+            "rays": rays,
+            "truncated": self.tree.truncated,
+        })
+    }
+}

@@ -1,0 +1,197 @@
+//! Parts of an image rendered apart (`--region`, `--shard`) and stitched
+//! (`glint stitch`): the same bytes as one render, in every format, also when
+//! the shards run as concurrent processes (docs/scale-out.md); and parts that
+//! do not make one image give one-line errors and no output.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn glint(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_glint")).args(args).output().expect("glint runs")
+}
+
+fn showcase() -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/showcase.toml").to_str().unwrap().to_string()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Renders the showcase at 61 × 37 to `out` with `extra` options, checking it succeeds.
+fn render(out: &Path, extra: &[&str]) {
+    let scene = showcase();
+    let mut args = vec!["render", &scene, "-o", path(out), "--width", "61", "--height", "37", "-q"];
+    args.extend_from_slice(extra);
+    let o = glint(&args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+}
+
+fn stitch(parts: &[PathBuf], out: &Path) -> Output {
+    let mut args = vec!["stitch".to_string()];
+    args.extend(parts.iter().map(|p| path(p).to_string()));
+    args.extend(["-o".to_string(), path(out).to_string()]);
+    Command::new(env!("CARGO_BIN_EXE_glint")).args(&args).output().expect("glint runs")
+}
+
+#[track_caller]
+fn assert_same_file(a: &Path, b: &Path) {
+    assert!(std::fs::read(a).unwrap() == std::fs::read(b).unwrap(), "{} and {} differ", a.display(), b.display());
+}
+
+#[test]
+fn stitched_shards_are_the_single_render_byte_for_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[&str]); 6] = [
+        ("png", &["--spp", "4", "--filter", "tent", "--seed", "5"]),
+        ("png", &["--bits", "16", "--spp", "2"]),
+        ("exr", &["--spp", "3"]),
+        ("pfm", &[]),
+        ("exr", &["--view", "depth"]),
+        ("pfm", &["--view", "id"]),
+    ];
+    for (case, (ext, options)) in cases.iter().enumerate() {
+        let whole = dir.path().join(format!("whole{case}.{ext}"));
+        render(&whole, options);
+        let parts: Vec<PathBuf> = (0..4)
+            .map(|i| {
+                let part = dir.path().join(format!("case{case}_shard{i}.{ext}"));
+                let shard = format!("{i}/4");
+                render(&part, &[*options, &["--shard", &shard][..]].concat());
+                part
+            })
+            .collect();
+        let stitched = dir.path().join(format!("stitched{case}.{ext}"));
+        let o = stitch(&parts.iter().rev().cloned().collect::<Vec<_>>(), &stitched);
+        assert!(o.status.success(), "case {case}: {}", stderr(&o));
+        assert_same_file(&whole, &stitched);
+    }
+}
+
+#[test]
+fn regions_and_their_aovs_stitch_into_the_single_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole = dir.path().join("whole.png");
+    let whole_depth = dir.path().join("whole_depth.pfm");
+    render(&whole, &["--spp", "2", "--aov", &format!("depth={}", path(&whole_depth))]);
+    // Three regions of different shapes that cover the image once.
+    let regions = [["0", "0", "20", "30"], ["20", "0", "61", "30"], ["0", "30", "61", "37"]];
+    let (mut parts, mut depths) = (Vec::new(), Vec::new());
+    for (i, region) in regions.iter().enumerate() {
+        let (part, depth) = (dir.path().join(format!("r{i}.png")), dir.path().join(format!("r{i}_depth.pfm")));
+        let aov = format!("depth={}", path(&depth));
+        render(&part, &[&["--spp", "2", "--aov", &aov, "--region"][..], &region[..]].concat());
+        let placement = std::fs::read_to_string(dir.path().join(format!("r{i}_depth.pfm.json"))).unwrap();
+        assert!(placement.contains("\"image\": [61, 37]"), "{placement}");
+        parts.push(part);
+        depths.push(depth);
+    }
+    for (parts, want) in [(parts, whole), (depths, whole_depth)] {
+        let stitched = dir.path().join(format!("stitched_{}", want.file_name().unwrap().to_str().unwrap()));
+        let o = stitch(&parts, &stitched);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert_same_file(&want, &stitched);
+    }
+}
+
+/// What docs/scale-out.md does on a cluster, on this machine: N processes,
+/// each rendering its shard at the same time, then one stitch.
+#[test]
+fn concurrent_shard_processes_stitch_into_the_single_process_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = showcase();
+    let size = ["--width", "96", "--height", "64", "--spp", "2", "-q"];
+    let whole = dir.path().join("whole.png");
+    let o = glint(&[&["render", &scene, "-o", path(&whole)][..], &size].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    const SHARDS: u32 = 4;
+    let parts: Vec<PathBuf> = (0..SHARDS).map(|i| dir.path().join(format!("shard_{i}.png"))).collect();
+    let running: Vec<_> = parts
+        .iter()
+        .enumerate()
+        .map(|(i, part)| {
+            let shard = format!("{i}/{SHARDS}");
+            Command::new(env!("CARGO_BIN_EXE_glint"))
+                .args([&["render", &scene, "-o", path(part), "--shard", &shard][..], &size].concat())
+                .spawn()
+                .expect("glint starts")
+        })
+        .collect();
+    for mut process in running {
+        assert!(process.wait().unwrap().success());
+    }
+    let stitched = dir.path().join("stitched.png");
+    let o = stitch(&parts, &stitched);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_same_file(&whole, &stitched);
+}
+
+#[test]
+fn parts_that_do_not_make_one_image_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let part = |name: &str, extra: &[&str]| {
+        let p = dir.path().join(name);
+        render(&p, extra);
+        p
+    };
+    let top = part("top.png", &["--shard", "0/2"]);
+    let bottom = part("bottom.png", &["--shard", "1/2"]);
+    let bottom16 = part("bottom16.png", &["--shard", "1/2", "--bits", "16"]);
+    let bottom_exr = part("bottom.exr", &["--shard", "1/2"]);
+    let wider = dir.path().join("wider.png");
+    let o = glint(&["render", &showcase(), "-o", path(&wider), "--width", "62", "--height", "37", "--shard", "1/2", "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let overlapping = part("overlapping.png", &["--region", "0", "10", "61", "37"]);
+    let whole = part("whole.png", &[]);
+    let resized = dir.path().join("resized.png");
+    std::fs::copy(&top, &resized).unwrap();
+    std::fs::copy(dir.path().join("bottom.png.json"), dir.path().join("resized.png.json")).unwrap();
+    let garbled = dir.path().join("garbled.png");
+    std::fs::copy(&top, &garbled).unwrap();
+    std::fs::write(dir.path().join("garbled.png.json"), "{\"image\": [61], \"region\": [0, 0, 61, 18]}").unwrap();
+
+    let cases: [(&[&PathBuf], &str, &str); 9] = [
+        (&[&top], "out.png", "uncovered, the first at (0, 18)"),
+        (&[&top, &bottom, &overlapping], "out.png", "overlap"),
+        (&[&top, &wider], "out.png", "is a part of a 62x37 image, but"),
+        (&[&top, &bottom16], "out.png", "is a 16-bit PNG, but"),
+        (&[&top, &bottom_exr], "out.png", "is an RGB EXR, but"),
+        (&[&top, &bottom], "out.exr", "the parts are .png files"),
+        (&[&top, &whole], "out.png", "whole.png: no placement file"),
+        (&[&resized, &bottom], "out.png", "is 61x18, but its placement"),
+        (&[&garbled, &bottom], "out.png", "`image` must be a list of 2 whole numbers"),
+    ];
+    for (parts, out, want) in cases {
+        let out = dir.path().join(out);
+        let o = stitch(&parts.iter().map(|p| p.to_path_buf()).collect::<Vec<_>>(), &out);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(3), "{want}: {err}");
+        assert!(err.starts_with("glint: ") && err.contains(want) && err.lines().count() == 1, "want `{want}`, got: {err}");
+        assert!(!out.exists(), "{want}: an output was written");
+    }
+}
+
+#[test]
+fn bad_regions_and_shards_are_usage_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let scene = showcase();
+    let size = ["--width", "61", "--height", "37"];
+    for (extra, want) in [
+        (&["--region", "0", "0", "62", "10"][..], "--region 0 0 62 10: must be X0 < X1 <= 61 and Y0 < Y1 <= 37"),
+        (&["--region", "5", "5", "5", "10"], "inside the 61x37 image"),
+        (&["--shard", "4/4"], "I must be below N (0/4 to 3/4)"),
+        (&["--shard", "0/0"], "must be at least 1"),
+        (&["--shard", "half"], "is not I/N"),
+        (&["--shard", "0/38"], "has only 37 rows, so it splits into at most 37 shards"),
+    ] {
+        let o = glint(&[&["render", &scene, "-o", path(&out)][..], &size, extra].concat());
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", stderr(&o));
+        assert!(stderr(&o).starts_with("glint: ") && stderr(&o).contains(want), "{extra:?}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
+}

@@ -1,0 +1,299 @@
+//! Parts of one image rendered apart (`glint render --region` or `--shard`),
+//! and putting them back together. Each part's placement — the full image's
+//! size and the region the part holds — is recorded beside it in
+//! `PART.json` (`shard0.png` → `shard0.png.json`), one format for PNG, EXR
+//! and PFM alike (PFM has no room for metadata). Stitching reads each part
+//! back as the values it was written from and writes the whole with the same
+//! encoder, so stitched parts give the bytes of a render done in one piece.
+
+use std::path::{Path, PathBuf};
+
+use crate::output::{write_atomically, write_image_channels, Channels, Format, Image, PngBits};
+use crate::{read_pfm_channels, GpuError, Region};
+
+/// Where a part belongs: in an image of `width` × `height`, at `region`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Placement {
+    pub width: u32,
+    pub height: u32,
+    pub region: Region,
+}
+
+/// The file that records the placement of the part at `image`.
+pub fn placement_path(image: &Path) -> PathBuf {
+    let mut name = image.as_os_str().to_owned();
+    name.push(".json");
+    PathBuf::from(name)
+}
+
+/// Records, atomically, that the part at `image` holds `placement`.
+pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), GpuError> {
+    let path = placement_path(image);
+    let Region { x0, y0, x1, y1 } = placement.region;
+    let text = format!(
+        "{{\"glint_part\": 1, \"image\": [{}, {}], \"region\": [{x0}, {y0}, {x1}, {y1}]}}\n",
+        placement.width, placement.height
+    );
+    write_atomically(&path, text.as_bytes()).map_err(|e| GpuError::Output(format!("{}: {e}", path.display())))
+}
+
+/// The placement recorded beside the part at `image`.
+pub fn read_placement(image: &Path) -> Result<Placement, String> {
+    let path = placement_path(image);
+    let shown = path.display();
+    let text = std::fs::read_to_string(&path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => format!(
+            "{}: no placement file {shown} beside it: only parts rendered with --region or --shard can be stitched",
+            image.display()
+        ),
+        _ => format!("{shown}: cannot read: {e}"),
+    })?;
+    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{shown}: not JSON: {e}"))?;
+    let numbers = |key: &str, count: usize| -> Result<Vec<u32>, String> {
+        let wrong = || format!("{shown}: `{key}` must be a list of {count} whole numbers");
+        let list = value.get(key).and_then(|v| v.as_array()).ok_or_else(wrong)?;
+        let numbers: Option<Vec<u32>> = list.iter().map(|n| n.as_u64().and_then(|n| u32::try_from(n).ok())).collect();
+        numbers.filter(|n| n.len() == count).ok_or_else(wrong)
+    };
+    let (image_size, region) = (numbers("image", 2)?, numbers("region", 4)?);
+    let placement = Placement {
+        width: image_size[0],
+        height: image_size[1],
+        region: Region { x0: region[0], y0: region[1], x1: region[2], y1: region[3] },
+    };
+    if placement.region.is_empty() || !Region::whole(placement.width, placement.height).contains(&placement.region) {
+        return Err(format!(
+            "{shown}: the region {} is empty or not inside the {}x{} image",
+            placement.region, placement.width, placement.height
+        ));
+    }
+    Ok(placement)
+}
+
+/// How a part's values are stored, which the whole must keep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Encoding {
+    Png(PngBits),
+    Float(Format, Channels),
+}
+
+impl std::fmt::Display for Encoding {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Encoding::Png(PngBits::Eight) => f.write_str("an 8-bit PNG"),
+            Encoding::Png(PngBits::Sixteen) => f.write_str("a 16-bit PNG"),
+            Encoding::Float(format, Channels::Rgb) => write!(f, "an RGB {}", format!("{format:?}").to_ascii_uppercase()),
+            Encoding::Float(format, Channels::Single(name)) => {
+                write!(f, "a one-channel ({name}) {}", format!("{format:?}").to_ascii_uppercase())
+            }
+        }
+    }
+}
+
+/// A part read back: its placement, its values and how they were stored.
+struct Part {
+    path: PathBuf,
+    placement: Placement,
+    image: Image,
+    encoding: Encoding,
+}
+
+/// Assembles `parts` into the image they are parts of and writes it to
+/// `output` (the parts' format). The parts must be of one image, stored
+/// alike, and cover it exactly once; each problem is one line naming a file.
+pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(), GpuError> {
+    let parts: Vec<Part> = parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>().map_err(GpuError::Stitch)?;
+    let first = parts.first().ok_or_else(|| GpuError::Stitch("no parts to stitch".into()))?;
+    let (width, height, encoding) = (first.placement.width, first.placement.height, first.encoding);
+    let wanted = Format::from_path(output)?;
+    let format_of = |e: Encoding| match e {
+        Encoding::Png(_) => Format::Png,
+        Encoding::Float(format, _) => format,
+    };
+    if format_of(encoding) != wanted {
+        let extension = format!("{:?}", format_of(encoding)).to_ascii_lowercase();
+        return Err(GpuError::Stitch(format!(
+            "{}: the parts are .{extension} files and stitching keeps their format: name the output .{extension}",
+            output.display()
+        )));
+    }
+    for part in &parts {
+        let shown = part.path.display();
+        if (part.placement.width, part.placement.height) != (width, height) {
+            return Err(GpuError::Stitch(format!(
+                "{shown}: is a part of a {}x{} image, but {} is a part of a {width}x{height} one",
+                part.placement.width,
+                part.placement.height,
+                first.path.display()
+            )));
+        }
+        if part.encoding != encoding {
+            return Err(GpuError::Stitch(format!(
+                "{shown}: is {}, but {} is {encoding}",
+                part.encoding,
+                first.path.display()
+            )));
+        }
+    }
+    check_coverage(&parts, width, height)?;
+    let pixels = width as usize * height as usize;
+    let mut whole = Image { width, height, display: vec![[0.0; 4]; pixels], linear: vec![[0.0; 4]; pixels] };
+    for part in &parts {
+        whole.paste(&part.image, part.placement.region.x0, part.placement.region.y0);
+    }
+    let (bits, channels) = match encoding {
+        Encoding::Png(bits) => (bits, Channels::Rgb),
+        Encoding::Float(_, channels) => (PngBits::Eight, channels),
+    };
+    write_image_channels(&whole, output, bits, channels)
+}
+
+/// Checks that the parts' regions cover the `width` × `height` image exactly
+/// once: no two share a pixel and none is missing.
+fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), GpuError> {
+    for (i, a) in parts.iter().enumerate() {
+        for b in &parts[i + 1..] {
+            if a.placement.region.overlaps(&b.placement.region) {
+                return Err(GpuError::Stitch(format!(
+                    "{} (region {}) and {} (region {}) overlap",
+                    a.path.display(),
+                    a.placement.region,
+                    b.path.display(),
+                    b.placement.region
+                )));
+            }
+        }
+    }
+    let regions: Vec<Region> = parts.iter().map(|p| p.placement.region).collect();
+    if let Some((x, y)) = first_uncovered(&regions, width, height) {
+        let covered: u64 = regions.iter().map(Region::pixels).sum();
+        let missing = u64::from(width) * u64::from(height) - covered;
+        return Err(GpuError::Stitch(format!(
+            "the parts leave {missing} pixels of the {width}x{height} image uncovered, the first at ({x}, {y}): a part is missing"
+        )));
+    }
+    Ok(())
+}
+
+/// The first pixel, in reading order, of no region. The regions' edges cut
+/// the image into cells each wholly inside or outside every region, so one
+/// pixel per cell settles it, however large the image.
+fn first_uncovered(regions: &[Region], width: u32, height: u32) -> Option<(u32, u32)> {
+    let cuts = |edges: &mut dyn Iterator<Item = u32>, end: u32| {
+        let mut cuts: Vec<u32> = edges.filter(|&e| e < end).chain([0]).collect();
+        cuts.sort_unstable();
+        cuts.dedup();
+        cuts
+    };
+    let ys = cuts(&mut regions.iter().flat_map(|r| [r.y0, r.y1]), height);
+    let xs = cuts(&mut regions.iter().flat_map(|r| [r.x0, r.x1]), width);
+    ys.iter().flat_map(|&y| xs.iter().map(move |&x| (x, y))).find(|&(x, y)| {
+        !regions.iter().any(|r| r.contains(&Region { x0: x, y0: y, x1: x + 1, y1: y + 1 }))
+    })
+}
+
+fn read_part(path: &Path) -> Result<Part, String> {
+    let shown = path.display();
+    let format = Format::from_path(path).map_err(|e| e.to_string())?;
+    let placement = read_placement(path)?;
+    let bytes = std::fs::read(path).map_err(|e| format!("{shown}: cannot read: {e}"))?;
+    let (image, encoding) = decode(&bytes, format).map_err(|e| format!("{shown}: {e}"))?;
+    let region = placement.region;
+    if (image.width, image.height) != (region.width(), region.height()) {
+        return Err(format!(
+            "{shown}: is {}x{}, but its placement {} says the region {region} ({}x{})",
+            image.width,
+            image.height,
+            placement_path(path).display(),
+            region.width(),
+            region.height()
+        ));
+    }
+    Ok(Part { path: path.to_path_buf(), placement, image, encoding })
+}
+
+/// The values a part was written from, and how they were stored.
+fn decode(bytes: &[u8], format: Format) -> Result<(Image, Encoding), String> {
+    let image_of = |width: u32, height: u32, values: Vec<[f32; 4]>| Image { width, height, display: values.clone(), linear: values };
+    match format {
+        Format::Png => {
+            let decoded = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
+                .map_err(|e| format!("not a readable PNG: {e}"))?;
+            let (width, height) = (decoded.width(), decoded.height());
+            // Dividing by the largest value is what writing multiplies back.
+            let scaled = |rgb: [f32; 3], max: f32| [rgb[0] / max, rgb[1] / max, rgb[2] / max, 1.0];
+            let (values, bits): (Vec<[f32; 4]>, PngBits) = match decoded {
+                image::DynamicImage::ImageRgb8(rgb) => (rgb.pixels().map(|p| scaled(p.0.map(f32::from), 255.0)).collect(), PngBits::Eight),
+                image::DynamicImage::ImageRgb16(rgb) => {
+                    (rgb.pixels().map(|p| scaled(p.0.map(f32::from), 65535.0)).collect(), PngBits::Sixteen)
+                }
+                _ => return Err("not an RGB PNG as `glint render` writes".into()),
+            };
+            Ok((image_of(width, height, values), Encoding::Png(bits)))
+        }
+        Format::Pfm => {
+            let (width, height, channels, values) = read_pfm_channels(bytes)?;
+            let (values, channels) = match channels {
+                1 => (values.iter().map(|&v| [v, 0.0, 0.0, 1.0]).collect(), Channels::Single("Z")),
+                _ => (values.chunks_exact(3).map(|c| [c[0], c[1], c[2], 1.0]).collect(), Channels::Rgb),
+            };
+            Ok((image_of(width, height, values), Encoding::Float(Format::Pfm, channels)))
+        }
+        Format::Exr => decode_exr(bytes).map(|(image, channels)| (image, Encoding::Float(Format::Exr, channels))),
+    }
+}
+
+/// An EXR as `glint render` writes them: R, G and B, or one named channel.
+fn decode_exr(bytes: &[u8]) -> Result<(Image, Channels), String> {
+    use exr::prelude::{ReadChannels, ReadLayers};
+    let read = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| format!("not a readable EXR: {e}"))?;
+    let layer = read.layer_data;
+    let (width, height) = (layer.size.width() as u32, layer.size.height() as u32);
+    let channels = &layer.channel_data.list;
+    let named = |name: &str| channels.iter().find(|c| c.name.to_string() == name);
+    let image = |values: Vec<[f32; 4]>| Image { width, height, display: values.clone(), linear: values };
+    if let [channel] = &channels[..] {
+        let values = channel.sample_data.values_as_f32().map(|v| [v, 0.0, 0.0, 1.0]).collect();
+        // The stitched file names its one channel as the parts do. `Channels`
+        // holds the names Glint writes, which live for the whole program, so
+        // a name read from a file is kept as long: a few bytes per part.
+        let name: &'static str = Box::leak(channel.name.to_string().into_boxed_str());
+        return Ok((image(values), Channels::Single(name)));
+    }
+    match (named("R"), named("G"), named("B")) {
+        (Some(r), Some(g), Some(b)) if channels.len() == 3 => {
+            let values = r
+                .sample_data
+                .values_as_f32()
+                .zip(g.sample_data.values_as_f32())
+                .zip(b.sample_data.values_as_f32())
+                .map(|((r, g), b)| [r, g, b, 1.0])
+                .collect();
+            Ok((image(values), Channels::Rgb))
+        }
+        _ => Err("not an EXR as `glint render` writes (R, G and B, or one channel)".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_hole_between_parts_is_found_wherever_it_is() {
+        let r = |x0, y0, x1, y1| Region { x0, y0, x1, y1 };
+        // A frame around the pixels [4, 6) × [3, 5) of a 10 × 8 image.
+        let frame = [r(0, 0, 10, 3), r(0, 3, 4, 5), r(6, 3, 10, 5), r(0, 5, 10, 8)];
+        assert_eq!(first_uncovered(&frame, 10, 8), Some((4, 3)));
+        let filled: Vec<Region> = frame.iter().copied().chain([r(4, 3, 6, 5)]).collect();
+        assert_eq!(first_uncovered(&filled, 10, 8), None);
+        assert_eq!(first_uncovered(&[], 3, 3), Some((0, 0)));
+    }
+}
