@@ -5,15 +5,12 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use glint_gpu::probe::{Prober, RayTree};
+use glint_gpu::probe::{kind_name, number_text as num, vec3_text as v3, Prober, RayTree, TreeText};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
-use glint_scene::gpu_types::{
-    ProbeRay, MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_SHADOW_TRACED, PROBE_TOTAL_INTERNAL_REFLECTION,
-    RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
-};
+use glint_scene::gpu_types::{MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_SHADOW};
 use glint_scene::scene::MAX_DEPTH_LIMIT;
-use glint_scene::{Projection, Scene, Shape};
+use glint_scene::{Projection, Scene};
 use serde_json::json;
 
 use crate::{exit, Failure};
@@ -89,43 +86,9 @@ struct Report<'a> {
     tree: &'a RayTree,
 }
 
-fn v3(v: [f32; 3]) -> String {
-    format!("({}, {}, {})", num(v[0]), num(v[1]), num(v[2]))
-}
-
-fn num(v: f32) -> String {
-    let s = format!("{v:.5}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
-}
-
-fn kind_name(kind: u32) -> &'static str {
-    match kind {
-        RAY_EYE => "eye",
-        RAY_REFLECT => "reflect",
-        RAY_REFRACT => "refract",
-        _ => "shadow",
-    }
-}
-
 impl Report<'_> {
-    fn contribution(&self, ray: &ProbeRay) -> [f32; 3] {
-        let cue = self.scene.depth_cue.map(|d| d.color.into());
-        self.tree.contribution(ray, self.scene.background.into(), cue)
-    }
-
-    fn object(&self, index: u32) -> String {
-        let Some(object) = self.scene.objects.get(index as usize) else { return format!("object {index}") };
-        let shape = match object.shapes.as_slice() {
-            [Shape::Sphere { .. }] => "sphere".to_string(),
-            [Shape::Triangle { .. }] => "triangle".to_string(),
-            [Shape::Polygon { vertices }] => format!("{}-gon", vertices.len()),
-            [Shape::Cone { base_radius, apex_radius, .. }] if base_radius == apex_radius => "cylinder".to_string(),
-            [Shape::Cone { .. }] => "cone".to_string(),
-            shapes => format!("mesh of {} primitives", shapes.len()),
-        };
-        let material = self.scene.materials.get(object.material).map_or("?", |m| m.name.as_str());
-        format!("object {index} ({shape}, material \"{material}\")")
+    fn text_of_tree(&self) -> TreeText<'_> {
+        TreeText { scene: self.scene, tree: self.tree, first_number: 0 }
     }
 
     /// e, u, v, w, the view window and the screen point of the eye ray.
@@ -171,59 +134,12 @@ impl Report<'_> {
         out.push_str(&format!("ray tree: the contributions add up to the pixel's linear colour {}\n", v3(self.tree.color)));
         for (id, ray) in self.tree.rays.iter().enumerate() {
             let indent = "  ".repeat(ray.depth as usize) + if ray.kind == RAY_SHADOW { "  " } else { "" };
-            out.push_str(&format!("{indent}#{id} {}\n", self.describe(ray).join(&format!("\n{indent}   "))));
+            out.push_str(&format!("{indent}#{id} {}\n", self.text_of_tree().describe(ray).join(&format!("\n{indent}   "))));
         }
         if self.tree.truncated {
             out.push_str("(the tree has more rays than the probe records; the rest are left out)\n");
         }
         out
-    }
-
-    fn describe(&self, ray: &ProbeRay) -> Vec<String> {
-        let contribution = v3(self.contribution(ray));
-        if ray.kind == RAY_SHADOW {
-            let blocked = ray.flags & PROBE_BLOCKED != 0;
-            let state = if ray.flags & PROBE_SHADOW_TRACED == 0 {
-                "shadows off: not traced".to_string()
-            } else if blocked {
-                format!("blocked by {}", self.object(ray.blocker))
-            } else if ray.transmittance != [1.0; 3] {
-                format!("let through, tinted S = {}", v3(ray.transmittance))
-            } else {
-                "reaches the light (S = 1)".to_string()
-            };
-            return vec![
-                format!("shadow ray to light {}, from {} towards {}", ray.light, v3(ray.origin), v3(ray.dir)),
-                format!("N·L = {}, distance {}, {state}", num(ray.n_dot_l), num(ray.distance)),
-                format!("diffuse {}, specular {}, contributes {contribution}", v3(ray.diffuse), v3(ray.specular)),
-            ];
-        }
-        let mut lines = vec![format!(
-            "{} ray, depth {}, weight {}, from {} along {}",
-            kind_name(ray.kind),
-            ray.depth,
-            v3(ray.weight),
-            v3(ray.origin),
-            v3(ray.dir)
-        )];
-        if ray.object == NO_RAY {
-            lines.push(format!("misses everything: the background, contributes {contribution}"));
-            return lines;
-        }
-        let side = if ray.flags & PROBE_BACKFACE != 0 { "back face (from inside)" } else { "front face" };
-        lines.push(format!("hits {} at t = {}, point {}, {side}", self.object(ray.object), num(ray.t), v3(ray.point)));
-        lines.push(format!("geometric normal {}, shading normal {}", v3(ray.geometric), v3(ray.shading)));
-        let mut local = format!("ambient {}", v3(ray.ambient));
-        if self.scene.depth_cue.is_some() {
-            local.push_str(&format!(", depth cue s_o = {}", num(ray.cue_scale)));
-        }
-        lines.push(format!("{local}, contributes {contribution} (its lights below)"));
-        if ray.flags & PROBE_TOTAL_INTERNAL_REFLECTION != 0 {
-            lines.push(format!("η = {}: total internal reflection, the transmitted share is reflected", num(ray.eta)));
-        } else if self.scene.materials[ray.material as usize].is_transmissive() {
-            lines.push(format!("refracts with η = n1/n2 = {}", num(ray.eta)));
-        }
-        lines
     }
 
     fn json(&self) -> serde_json::Value {
@@ -247,7 +163,7 @@ impl Report<'_> {
                     "t": (r.t < MISS).then_some(r.t),
                     "object": hit.then_some(r.object),
                     "weight": r.weight,
-                    "contribution": self.contribution(r),
+                    "contribution": self.text_of_tree().contribution(r),
                     "point": hit.then_some(r.point),
                     "geometric_normal": hit.then_some(r.geometric),
                     "shading_normal": hit.then_some(r.shading),

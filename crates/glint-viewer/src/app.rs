@@ -8,12 +8,14 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use egui::Rect;
+use glint_gpu::probe::RayTree;
 use glint_gpu::shaders::ShaderSource;
 use glint_scene::scene::MAX_IMAGE_SIDE;
 use glint_scene::{LoadError, Scene};
 
 use crate::document::{Document, LoadedScene};
 use crate::image::TracedImage;
+use crate::inspector::Inspector;
 use crate::jobs::{Job, Jobs};
 use crate::selection::Selection;
 use crate::settings::Settings;
@@ -90,6 +92,7 @@ pub struct ViewerApp {
     pub(crate) settings: Settings,
     pub(crate) selection: Selection,
     pub(crate) image: TracedImage,
+    pub(crate) inspector: Inspector,
     /// Shown in the Save section: the outcome of the last file action, or a
     /// warning (message, is a problem).
     pub(crate) notice: Option<(String, bool)>,
@@ -121,6 +124,7 @@ impl ViewerApp {
             settings: Settings::default(),
             selection: Selection::default(),
             image: TracedImage::new(rs.device.clone(), Arc::clone(&rs.renderer), max_side),
+            inspector: Inspector::default(),
             notice: glint_gpu::device::old_lavapipe_warning(&info).map(|warning| (warning, true)),
             errors: Errors::default(),
         };
@@ -166,6 +170,21 @@ impl ViewerApp {
 
     pub fn selected_object(&self) -> Option<usize> {
         self.selection.object
+    }
+
+    /// The ray tree of the pixel pinned in inspect mode, as last probed.
+    pub fn inspected_tree(&self) -> Option<&RayTree> {
+        self.inspector.tree.as_ref()
+    }
+
+    /// The pixel pinned in inspect mode, in the image as rendered now.
+    pub fn inspected_pixel(&self) -> Option<(u32, u32)> {
+        self.inspector.pixel(&self.image)
+    }
+
+    /// The ray whose node the pointer is over in the inspector.
+    pub fn highlighted_ray(&self) -> Option<usize> {
+        self.inspector.hovered
     }
 
     /// The problems shown above the image, one line each.
@@ -220,6 +239,9 @@ impl ViewerApp {
             self.open(path);
         }
         self.fly_keys(ctx);
+        if !ctx.text_edit_focused() && ctx.input(|i| i.key_pressed(egui::Key::I)) {
+            self.inspector.set_enabled(!self.inspector.enabled);
+        }
         if self.shaders.is_watched() || self.document.is_watched() {
             // Keep looking at the files while idle.
             ctx.request_repaint_after(Duration::from_millis(500));
@@ -248,6 +270,7 @@ impl ViewerApp {
                     let (kernels, doc) = (self.shaders.kernels.as_ref(), self.document.loaded.as_ref());
                     self.image.finish_prepare(key, result, kernels, doc, &mut self.errors.gpu);
                 }
+                Job::ProberCompiled { kernels, result } => self.inspector.finish_compile(kernels, result, &mut self.errors.shader),
             }
         }
     }
@@ -266,6 +289,7 @@ impl ViewerApp {
                 (self.shaders.compiling, "compiling shaders…"),
                 (self.document.loading, "loading…"),
                 (self.image.preparing, "uploading…"),
+                (self.inspector.is_compiling(), "compiling the probe kernel…"),
             ];
             for (busy, what) in busy {
                 if busy {
@@ -309,5 +333,7 @@ impl eframe::App for ViewerApp {
         let (kernels, doc) = (self.shaders.kernels.as_ref(), self.document.loaded.as_ref());
         self.image.ensure_canvas(kernels, doc, &self.jobs);
         self.image.render(&ctx, doc, &self.settings, &mut self.errors.gpu);
+        // After the render, which writes edits into the canvas the probe reads.
+        self.inspector.update(&self.image, doc, &self.jobs, &mut self.errors.gpu);
     }
 }

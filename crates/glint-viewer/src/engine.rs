@@ -25,6 +25,8 @@ const RATE_WINDOW: Duration = Duration::from_millis(1000);
 pub struct Kernels {
     pub renderer: Renderer,
     pub present: PresentPipeline,
+    /// Where their WGSL came from: the probe kernel is compiled later from the same.
+    pub source: ShaderSource,
     queue: wgpu::Queue,
 }
 
@@ -32,7 +34,7 @@ impl Kernels {
     pub fn compile(device: &wgpu::Device, queue: &wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
         let renderer = Renderer::new(device.clone(), queue.clone(), source)?;
         let present = renderer.present_pipeline(source)?;
-        Ok(Self { renderer, present, queue: queue.clone() })
+        Ok(Self { renderer, present, source: source.clone(), queue: queue.clone() })
     }
 }
 

@@ -46,6 +46,9 @@ pub(crate) struct TracedImage {
     pub dirty: bool,
     /// Only the display mapping changed: present again without tracing.
     pub represent: bool,
+    /// Counts the writes of the scene into the canvas, so what was read back
+    /// from it can tell when it is out of date.
+    pub syncs: u64,
     /// Where the image is drawn, in points.
     pub rect: Option<Rect>,
     wanted_size: Option<(u32, u32)>,
@@ -65,6 +68,7 @@ impl TracedImage {
             acc: Accumulation::default(),
             dirty: false,
             represent: false,
+            syncs: 0,
             rect: None,
             wanted_size: None,
             frame_time: FrameTime::default(),
@@ -87,6 +91,11 @@ impl TracedImage {
             (Some(c), Some(d)) => c.scene_generation == d.generation,
             _ => false,
         }
+    }
+
+    /// The canvas, when it holds `doc` as it is now.
+    pub fn synced_canvas(&self, doc: Option<&LoadedScene>) -> Option<&Canvas> {
+        self.canvas.as_ref().filter(|_| self.canvas_is_current(doc) && !self.dirty)
     }
 
     /// Samples per pixel in the image of `doc` as it is now.
@@ -228,6 +237,7 @@ impl TracedImage {
         let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), lights.len() as u32, buffers.bvh_root());
         renderer.write_uniforms(buffers, &uniforms);
         self.acc.restart();
+        self.syncs += 1;
         Ok(true)
     }
 

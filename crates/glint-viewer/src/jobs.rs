@@ -5,8 +5,11 @@
 use std::path::PathBuf;
 use std::sync::mpsc::{channel, Receiver, Sender};
 
+use glint_gpu::probe::Prober;
 use glint_gpu::GpuError;
 use glint_scene::{LoadError, Scene};
+
+use std::sync::Arc;
 
 use crate::engine::{Canvas, Kernels};
 use crate::image::CanvasKey;
@@ -16,6 +19,7 @@ pub(crate) enum Job {
     Compiled { result: Result<Kernels, GpuError>, fallback_error: Option<GpuError> },
     Loaded { generation: u64, path: PathBuf, reload: bool, result: Result<Scene, LoadError> },
     Prepared { key: CanvasKey, result: Result<Box<Canvas>, GpuError> },
+    ProberCompiled { kernels: Arc<Kernels>, result: Result<Prober, GpuError> },
 }
 
 pub struct Jobs<T> {

@@ -5,7 +5,8 @@
 //!
 //! The image refines progressively while the view is still and restarts on any
 //! change. Lights, materials and render settings are edited live; clicking the
-//! image selects the object under the pointer. The scene file and the WGSL in
+//! image selects the object under the pointer; in inspect mode (I, or a
+//! Ctrl-click) it pins a pixel and shows its ray tree. The scene file and the WGSL in
 //! `shaders/` are reloaded when they change on disk; a broken file shows its
 //! error and the last good scene or pipeline keeps running.
 
@@ -14,6 +15,7 @@ mod camera_control;
 mod document;
 mod engine;
 mod image;
+mod inspector;
 mod jobs;
 mod panel;
 mod selection;

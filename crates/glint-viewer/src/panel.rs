@@ -65,6 +65,9 @@ impl ViewerApp {
             return;
         }
         self.selection_section(ui);
+        if let Some(doc) = &self.document.loaded {
+            self.inspector.section(ui, &self.image, doc);
+        }
         self.camera_section(ui);
         self.render_section(ui);
         self.lights_section(ui);

@@ -59,6 +59,7 @@ impl ViewerApp {
             && self.image.canvas_is_current(Some(doc))
         {
             self.selection.draw(&painter, &self.image, &doc.scene);
+            self.inspector.draw(&painter, &self.image, doc);
         }
         if ctx.input(|i| !i.raw.hovered_files.is_empty()) {
             painter.rect_filled(rect, 0.0, Color32::from_black_alpha(160));
@@ -109,7 +110,11 @@ impl ViewerApp {
         if response.clicked_by(egui::PointerButton::Primary)
             && let Some(pos) = response.interact_pointer_pos()
         {
-            self.selection.click(&self.image, doc, pos, &mut self.errors.gpu);
+            if self.inspector.enabled || ui.input(|i| i.modifiers.command) {
+                self.inspector.pin(&self.image, pos);
+            } else {
+                self.selection.click(&self.image, doc, pos, &mut self.errors.gpu);
+            }
         }
     }
 
