@@ -356,7 +356,7 @@ fn scenes_dir() -> PathBuf {
 /// rewrites the file under GLINT_BLESS=1.
 fn check(name: &str, text: &str, primitives: std::ops::RangeInclusive<usize>) {
     let path = scenes_dir().join(name);
-    let scene = glint_scene::nff::parse(text, &path, &glint_scene::NffOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let scene = glint_scene::nff::parse(text, &path, &glint_scene::nff::NffOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     assert!(scene.warnings.is_empty(), "{name}: {:?}", scene.warnings);
     assert!(primitives.contains(&scene.primitive_count()), "{name}: {} primitives, expected {primitives:?}", scene.primitive_count());
     assert!(text.len() <= MAX_FILE_BYTES, "{name}: {} bytes, over {MAX_FILE_BYTES}", text.len());

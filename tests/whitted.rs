@@ -4,7 +4,7 @@
 mod support;
 
 use glam::DVec3;
-use glint_scene::camera::Ray;
+use glint_scene::Ray;
 use support::{assert_close, parse, render};
 
 const TOL: f64 = 1.0 / 255.0;

@@ -34,8 +34,8 @@ enum NffAngleArg {
 pub fn run(args: &CheckArgs) -> Result<(), Failure> {
     let options = glint_scene::LoadOptions {
         nff_angle: match args.nff_angle {
-            NffAngleArg::Centers => glint_scene::NffAngle::Centers,
-            NffAngleArg::Edges => glint_scene::NffAngle::Edges,
+            NffAngleArg::Centers => glint_scene::nff::NffAngle::Centers,
+            NffAngleArg::Edges => glint_scene::nff::NffAngle::Edges,
         },
     };
     let mut failed = 0;

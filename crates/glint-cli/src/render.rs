@@ -9,8 +9,8 @@ use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
 use glint_gpu::{Acceleration, Format, Gpu, Image, PngBits, RayStats, Region, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
-use glint_scene::scene::MAX_DEPTH_LIMIT;
-use glint_scene::scene::MAX_IMAGE_SIDE;
+use glint_scene::MAX_DEPTH_LIMIT;
+use glint_scene::MAX_IMAGE_SIDE;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::{exit, Failure};
@@ -281,8 +281,8 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
 
     let load_options = glint_scene::LoadOptions {
         nff_angle: match args.nff_angle {
-            NffAngleArg::Centers => glint_scene::NffAngle::Centers,
-            NffAngleArg::Edges => glint_scene::NffAngle::Edges,
+            NffAngleArg::Centers => glint_scene::nff::NffAngle::Centers,
+            NffAngleArg::Edges => glint_scene::nff::NffAngle::Edges,
         },
     };
     let mut scene = glint_scene::load_with(&args.scene, &load_options).map_err(|e| Failure::new(exit::INPUT, e))?;

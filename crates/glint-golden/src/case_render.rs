@@ -3,8 +3,9 @@
 
 use glint_gpu::{Acceleration, Image, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
-use glint_scene::scene::MAX_IMAGE_SIDE;
-use glint_scene::{LoadOptions, NffAngle};
+use glint_scene::MAX_IMAGE_SIDE;
+use glint_scene::nff::NffAngle;
+use glint_scene::LoadOptions;
 
 use crate::manifest::Case;
 use crate::settings::{FilterName, NffAngleName, RenderSettings, ToneMapName, ViewName};

@@ -7,8 +7,8 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use glint_scene::scene::MAX_DEPTH_LIMIT;
-use glint_scene::scene::MAX_IMAGE_SIDE;
+use glint_scene::MAX_DEPTH_LIMIT;
+use glint_scene::MAX_IMAGE_SIDE;
 use serde::de::{self, Deserialize, Deserializer};
 
 use crate::criteria::Criteria;

@@ -1,20 +1,24 @@
 //! Glint's GPU host: picks a device, composes and validates the WGSL kernels,
 //! uploads a packed scene, dispatches the trace kernel in tiles, resolves the
 //! accumulated samples and reads the image back.
+//!
+//! The modules that are a subsystem of their own are public (`shaders`,
+//! `interactive`, `probe`, `display`, `schedule`, `stitch`); the host
+//! pipeline's types are used from the crate root.
 
-pub mod device;
+mod device;
 pub mod display;
-pub mod frame;
+mod frame;
 pub mod interactive;
-pub mod output;
+mod output;
 pub mod probe;
-pub mod renderer;
+mod renderer;
 pub mod schedule;
 pub mod shaders;
 pub mod stitch;
-pub mod tiles;
+mod tiles;
 
-pub use device::{Gpu, ADAPTER_ENV};
+pub use device::{old_lavapipe_warning, Gpu, ADAPTER_ENV};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,

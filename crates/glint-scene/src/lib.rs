@@ -3,17 +3,17 @@
 //! arrays the WGSL kernels read.
 
 pub mod bvh;
-pub mod camera;
-pub mod error;
+mod camera;
+mod error;
 pub mod gpu_bvh;
 pub mod gpu_types;
 pub mod icosphere;
-pub mod light;
-pub mod material;
+mod light;
+mod material;
 pub mod nff;
 pub mod obj;
-pub mod scene;
-pub mod shape;
+mod scene;
+mod shape;
 pub mod spd;
 pub mod suggest;
 #[cfg(test)]
@@ -23,17 +23,18 @@ pub mod toml_scene;
 pub mod toml_write;
 pub mod validate;
 
-pub use camera::{Camera, Projection};
+pub use camera::{Basis, Camera, Projection, Ray};
 pub use error::{LoadError, Location};
 pub use light::{Attenuation, Light, LightKind};
 pub use material::{Material, SpecularModel};
-pub use nff::{NffAngle, NffOptions};
-pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode};
-pub use shape::Shape;
+pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
+pub use shape::{Shape, ShapeProblem};
 
 use std::path::Path;
 
 use glam::Vec3;
+
+use crate::nff::{NffAngle, NffOptions};
 
 /// Why [`read_text`] failed.
 #[derive(Debug)]

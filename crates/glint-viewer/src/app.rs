@@ -10,7 +10,7 @@ use std::time::Duration;
 use egui::Rect;
 use glint_gpu::probe::RayTree;
 use glint_gpu::shaders::ShaderSource;
-use glint_scene::scene::MAX_IMAGE_SIDE;
+use glint_scene::MAX_IMAGE_SIDE;
 use glint_scene::{LoadError, Scene};
 
 use crate::document::{Document, LoadedScene};
@@ -125,7 +125,7 @@ impl ViewerApp {
             selection: Selection::default(),
             image: TracedImage::new(rs.device.clone(), Arc::clone(&rs.renderer), max_side),
             inspector: Inspector::default(),
-            notice: glint_gpu::device::old_lavapipe_warning(&info).map(|warning| (warning, true)),
+            notice: glint_gpu::old_lavapipe_warning(&info).map(|warning| (warning, true)),
             errors: Errors::default(),
         };
         app.shaders.start_compile(&app.jobs);

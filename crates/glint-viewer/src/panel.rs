@@ -8,7 +8,7 @@ use egui::{CollapsingHeader, ComboBox, Slider, SliderClamping, Ui};
 use glam::Vec3;
 use glint_gpu::ToneMap;
 use glint_scene::gpu_types::View;
-use glint_scene::scene::MAX_DEPTH_LIMIT;
+use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::{Attenuation, DepthCue, Light, LightKind, Projection, ShadowMode, Shape, SpecularModel};
 
 use crate::app::ViewerApp;

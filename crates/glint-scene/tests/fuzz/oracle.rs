@@ -8,7 +8,7 @@ use std::sync::atomic::Ordering;
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
 use glint_scene::gpu_types::{pack, scene_uniforms, primitive_bounds, GpuScene, BVH_STACK, LEAF, PRIM_POLYGON, PRIM_TRIANGLE, RIGHT_LEAF};
-use glint_scene::scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
+use glint_scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
 use glint_scene::{Attenuation, LightKind, LoadError, Projection, Scene, Shape};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
