@@ -66,7 +66,8 @@ impl SceneBuffers {
         self.accum_pixels == u64::from(self.width) * u64::from(self.height)
     }
 
-    pub(crate) fn check_whole_image(&self) -> Result<(), GpuError> {
+    /// [`Self::holds_whole_image`], as an error naming the sizes when not.
+    pub fn check_whole_image(&self) -> Result<(), GpuError> {
         if self.holds_whole_image() {
             return Ok(());
         }

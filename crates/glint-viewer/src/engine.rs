@@ -52,6 +52,8 @@ impl Canvas {
     /// Builds the BVH, uploads `scene` for `width` × `height` and makes its texture.
     pub fn new(kernels: Arc<Kernels>, scene: &Scene, width: u32, height: u32, scene_generation: u64) -> Result<Self, GpuError> {
         let prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
+        // Progressive rendering needs the whole image on the device at once.
+        prepared.buffers.check_whole_image()?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
         Ok(Self { kernels, prepared, target, scene_generation, counter })
