@@ -22,9 +22,9 @@ fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f
     // Each vertex is moved into the frame at one place in the code, so that
     // every polygon holding it gets the same numbers.
     var inside = false;
-    var prev: vec3<f32>;
+    var prev: vec2<f32>;
     for (var i = 0u; i <= p.count; i++) {
-        let cur = to_frame(frame, points[p.first + (i + p.count - 1u) % p.count].xyz);
+        let cur = to_frame_xy(frame, points[p.first + select(i - 1u, p.count - 1u, i == 0u)].xyz);
         let rising = cur.y >= 0.0;
         if i > 0u && (prev.y >= 0.0) != rising {
             // The edge meets y = 0 at x = edge(prev, cur) / (cur.y − prev.y).

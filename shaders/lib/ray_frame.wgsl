@@ -8,10 +8,14 @@
 
 struct RayFrame {
     origin: vec3<f32>,
-    // kx, ky, kz: the axis along which the direction is largest is z.
-    axes: vec3<u32>,
-    // Sx, Sy, Sz: x − Sx·z and y − Sy·z cancel the ray's slope, Sz·z is t.
-    shear: vec3<f32>,
+    // The frame's axes as rows: x = q[kx] − Sx·q[kz], y = q[ky] − Sy·q[kz] and
+    // z = Sz·q[kz] for q relative to the origin, with kz the axis along which
+    // the direction is largest and Sx, Sy, Sz the shear that cancels the ray's
+    // slope. As dot products they need no indexing by a per-ray axis, which a
+    // SIMD machine pays for per lane; the products with 0 and 1 are exact.
+    x: vec3<f32>,
+    y: vec3<f32>,
+    z: vec3<f32>,
 }
 
 fn ray_frame(ray: Ray) -> RayFrame {
@@ -30,15 +34,24 @@ fn ray_frame(ray: Ray) -> RayFrame {
         kx = ky;
         ky = k;
     }
+    let axes = vec3<u32>(0u, 1u, 2u);
+    let ex = select(vec3<f32>(0.0), vec3<f32>(1.0), axes == vec3<u32>(kx));
+    let ey = select(vec3<f32>(0.0), vec3<f32>(1.0), axes == vec3<u32>(ky));
+    let ez = select(vec3<f32>(0.0), vec3<f32>(1.0), axes == vec3<u32>(kz));
     let dz = ray.dir[kz];
-    return RayFrame(ray.origin, vec3<u32>(kx, ky, kz), vec3<f32>(ray.dir[kx] / dz, ray.dir[ky] / dz, 1.0 / dz));
+    return RayFrame(ray.origin, ex - (ray.dir[kx] / dz) * ez, ey - (ray.dir[ky] / dz) * ez, (1.0 / dz) * ez);
 }
 
 // `p` in the frame: x and y across the ray, z the distance along it.
 fn to_frame(f: RayFrame, p: vec3<f32>) -> vec3<f32> {
     let q = p - f.origin;
-    let qz = q[f.axes.z];
-    return vec3<f32>(q[f.axes.x] - f.shear.x * qz, q[f.axes.y] - f.shear.y * qz, f.shear.z * qz);
+    return vec3<f32>(dot(q, f.x), dot(q, f.y), dot(q, f.z));
+}
+
+// Only x and y of `to_frame`, computed the same way: what an inside test needs.
+fn to_frame_xy(f: RayFrame, p: vec3<f32>) -> vec2<f32> {
+    let q = p - f.origin;
+    return vec2<f32>(dot(q, f.x), dot(q, f.y));
 }
 
 // Twice the signed area of (origin, a, b) in the frame's xy plane: positive
@@ -51,7 +64,7 @@ fn edge(a: vec3<f32>, b: vec3<f32>) -> f32 {
 // −edge_sign(b, a). It compares the two products instead of subtracting them:
 // a compiler may fuse a·b − c·d into one multiply-add, which rounds the two
 // orders differently and would let a ray through a shared edge.
-fn edge_sign(a: vec3<f32>, b: vec3<f32>) -> f32 {
+fn edge_sign(a: vec2<f32>, b: vec2<f32>) -> f32 {
     let left = a.x * b.y;
     let right = a.y * b.x;
     return select(select(-1.0, 1.0, left > right), 0.0, left == right);

@@ -7,7 +7,7 @@ fn triangle_intersect(p: GpuPrim, frame: RayFrame, t_min: f32, t_max: f32) -> f3
     let a = to_frame(frame, p.a.xyz);
     let b = to_frame(frame, p.b.xyz);
     let c = to_frame(frame, p.c.xyz);
-    let sides = vec3<f32>(edge_sign(b, c), edge_sign(c, a), edge_sign(a, b));
+    let sides = vec3<f32>(edge_sign(b.xy, c.xy), edge_sign(c.xy, a.xy), edge_sign(a.xy, b.xy));
     if any(sides < vec3<f32>(0.0)) && any(sides > vec3<f32>(0.0)) {
         return MISS;
     }
