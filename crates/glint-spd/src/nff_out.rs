@@ -158,18 +158,13 @@ pub struct Counts {
 #[cfg(test)]
 impl Counts {
     pub fn of(text: &str) -> Self {
-        let mut counts = Counts::default();
-        for line in text.lines() {
-            match line.split_whitespace().next() {
-                Some("s") => counts.spheres += 1,
-                Some("c") => counts.cones += 1,
-                Some("p") => counts.polygons += 1,
-                Some("pp") => counts.patches += 1,
-                Some("l") => counts.lights += 1,
-                _ => {}
-            }
+        Counts {
+            spheres: count(text, "s"),
+            cones: count(text, "c"),
+            polygons: count(text, "p"),
+            patches: count(text, "pp"),
+            lights: count(text, "l"),
         }
-        counts
     }
 }
 

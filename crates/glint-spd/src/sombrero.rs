@@ -67,7 +67,6 @@ mod tests {
         crate::nff_out::generated(generate, size)
     }
 
-
     #[test]
     fn primitive_counts() {
         for size in 1..=3 {
