@@ -43,7 +43,11 @@ fn scaled(scene: &Scene, s: f32) -> Scene {
             Shape::Cone { base, base_radius, apex, apex_radius } => {
                 (*base, *apex, *base_radius, *apex_radius) = (*base * s, *apex * s, *base_radius * s, *apex_radius * s)
             }
+            Shape::Plane { point, .. } => *point *= s,
         }
+    }
+    for checker in out.materials.iter_mut().filter_map(|m| m.checker.as_mut()) {
+        checker.size *= s;
     }
     out
 }

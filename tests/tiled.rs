@@ -6,7 +6,7 @@
 mod support;
 
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Image, RayStats, Region, RenderOptions, Renderer};
+use glint_gpu::{Acceleration, Channels, Image, ImageSink, PngBits, RayStats, Region, RenderOptions, Renderer};
 use glint_scene::gpu_types::{Filter, View};
 use support::{gpu, parse, renderer};
 
@@ -49,6 +49,36 @@ fn tiled_renders_equal_untiled_ones_in_every_view() {
             assert_eq!(whole_stats, tile_stats, "{what}: ray counts differ");
         }
     }
+}
+
+/// What `glint render` does with tiles: each goes straight into the file,
+/// which holds no more than a band of tiles' rows of 8-bit samples, and the
+/// file is the one an untiled render writes.
+#[test]
+fn tiles_stream_into_a_png_that_holds_one_band_of_rows() {
+    let (width, height) = (45, 29);
+    let scene = showcase(width, height);
+    let tiled = renderer_with_tiles_of(u64::from(width) * 4);
+    let prepared = tiled.prepare(&scene, width, height, Acceleration::Bvh).unwrap();
+    let options = RenderOptions { spp: 2, ..RenderOptions::default() };
+    let dir = tempfile::tempdir().unwrap();
+    let (streamed, untiled) = (dir.path().join("streamed.png"), dir.path().join("untiled.png"));
+    let mut sink = ImageSink::create(&streamed, width, height, PngBits::Eight, Channels::Rgb).unwrap();
+    let mut held = 0;
+    let region = Region::whole(width, height);
+    tiled
+        .render_tiles(&prepared.buffers, region, &options, &mut |_, _| {}, &mut |tile, pixels| {
+            sink.paste(&pixels, tile.x0, tile.y0)?;
+            held = held.max(sink.retained_bytes());
+            Ok(())
+        })
+        .unwrap();
+    sink.finish().unwrap().commit().unwrap();
+    let band = width as usize * 4 * 3;
+    assert!(held <= band + 4 * 4, "{held} bytes held, a band of 4 rows is {band}");
+    let (image, _) = render(renderer(), &scene, None, options);
+    glint_gpu::write_image(&image, &untiled, PngBits::Eight).unwrap();
+    assert!(std::fs::read(&streamed).unwrap() == std::fs::read(&untiled).unwrap(), "the files differ");
 }
 
 #[test]

@@ -22,6 +22,7 @@ fn scene(shapes: Vec<Shape>, camera: Camera) -> Scene {
         objects: shapes.into_iter().map(|shape| Object { material: 0, shapes: vec![shape] }).collect(),
         depth_cue: None,
         render: RenderSettings::default(),
+        animation: None,
         warnings: Vec::new(),
     }
 }

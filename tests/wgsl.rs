@@ -10,9 +10,10 @@ use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms,
 };
+use glint_scene::specialization::Specialization;
 
 fn module(kernel: Kernel) -> naga::Module {
-    ShaderSource::Embedded.compose(kernel).unwrap().validate().unwrap()
+    ShaderSource::Embedded.compose(kernel, Specialization::ALL).unwrap().validate().unwrap()
 }
 
 fn trace_module() -> naga::Module {
@@ -22,8 +23,29 @@ fn trace_module() -> naga::Module {
 #[test]
 fn every_kernel_validates() {
     for kernel in Kernel::ALL {
-        if let Err(e) = ShaderSource::Embedded.compose(kernel).unwrap().validate() {
+        if let Err(e) = ShaderSource::Embedded.compose(kernel, Specialization::ALL).unwrap().validate() {
             panic!("{e}");
+        }
+    }
+}
+
+/// Every kernel that intersects primitives validates for every combination of
+/// kinds a scene can hold, and only those kernels are compiled per scene.
+#[test]
+fn every_specialisation_validates() {
+    for kernel in Kernel::ALL {
+        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL).unwrap();
+        let intersects = composed.files.iter().any(|(name, _)| name == "lib/primitive.wgsl");
+        assert_eq!(kernel.is_specialised(), intersects, "{kernel:?}");
+        if !intersects {
+            continue;
+        }
+        for bits in 0..32u32 {
+            let [spheres, triangles, polygons, cones, planes] = [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
+            let kinds = Specialization { spheres, triangles, polygons, cones, planes };
+            if let Err(e) = ShaderSource::Embedded.compose(kernel, kinds).unwrap().validate() {
+                panic!("{kernel:?} for {kinds}: {e}");
+            }
         }
     }
 }
@@ -41,7 +63,7 @@ fn every_shader_file_is_embedded_and_part_of_a_kernel() {
     assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
-        .flat_map(|&k| ShaderSource::Embedded.compose(k).unwrap().files.into_iter().map(|(name, _)| name))
+        .flat_map(|&k| ShaderSource::Embedded.compose(k, Specialization::ALL).unwrap().files.into_iter().map(|(name, _)| name))
         .collect();
     for name in SOURCES {
         assert!(used.contains(*name), "shaders/{name} is in no kernel");
@@ -90,7 +112,7 @@ fn imports_are_exactly_what_each_file_uses() {
             assert_eq!(uses, imported.contains(file), "shaders/{name}: {} {file}", if uses { "uses but does not import" } else { "imports but does not use" });
         }
     }
-    let primary = ShaderSource::Embedded.compose(Kernel::Primary).unwrap();
+    let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL).unwrap();
     assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
 }
 
@@ -106,11 +128,11 @@ fn errors_name_the_file_and_line() {
     let broken = std::fs::read_to_string(&sphere).unwrap().replacen("let b =", "let b = undefined_name +", 1);
     std::fs::write(&sphere, &broken).unwrap();
     let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace).unwrap().validate().unwrap_err().to_string();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL).unwrap().validate().unwrap_err().to_string();
     assert!(err.contains(&format!("shaders/lib/sphere.wgsl:{line}")), "{err}");
 
     std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace).unwrap_err().to_string();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL).unwrap_err().to_string();
     assert!(err.contains("lib/nowhere.wgsl"), "{err}");
 }
 
@@ -149,7 +171,7 @@ fn host_structs_match_wgsl() {
         m,
         SceneUniforms {
             camera, background, width, ambient, height, depth_cue_color, light_count, depth_cue, max_depth, cutoff,
-            flags, bvh_root
+            flags, bvh_root, plane_first, plane_count, _pad0, _pad1
         }
     );
     layout!(m, DispatchParams { origin, end, sample_index, seed, sample_count, pixel_filter, view, tile_x, tile_y, tile_width });
@@ -157,7 +179,8 @@ fn host_structs_match_wgsl() {
     layout!(
         m,
         GpuMaterial {
-            color, ka, specular_color, kd, reflect, ks, transmit, shininess, f0, ior, flags, _pad0, _pad1, _pad2
+            color, ka, specular_color, kd, reflect, ks, transmit, shininess, f0, ior, checker, checker_size, flags, _pad0,
+            _pad1, _pad2
         }
     );
     layout!(m, GpuPrim { a, b, c, kind_material, object, first, count });

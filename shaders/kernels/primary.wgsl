@@ -2,7 +2,7 @@
 // A kernel of its own, without the ray tree, compiles to far leaner code than
 // the trace kernel (register and private-memory pressure), so these views and
 // picking run faster.
-// import: bindings bvh camera diffuse_view dispatch primitive types
+// import: bindings bvh camera checker diffuse_view dispatch primitive types
 
 fn primary_view(eye: Ray) -> vec3<f32> {
     let hit = traverse(eye, 0.0, MISS, false, false);
@@ -18,15 +18,17 @@ fn primary_view(eye: Ray) -> vec3<f32> {
         }
     }
     let p = prims[hit.prim];
-    let m = materials[prim_material(p)];
     switch dispatch.view {
         case VIEW_NORMAL: { return surface_at(p, eye, hit.t).geometric; }
         case VIEW_DEPTH: { return vec3<f32>(hit.t); }
-        case VIEW_ALBEDO: { return m.color; }
+        case VIEW_ALBEDO: { return material_at(p, eye.origin + hit.t * eye.dir).color; }
         // x for display and AOVs (exact up to 2^24), y the index's own bits,
         // which picking reads: exact for any number of objects.
         case VIEW_ID: { return vec3<f32>(f32(p.object), bitcast<f32>(p.object), 0.0); }
-        default: { return diffuse_only(surface_at(p, eye, hit.t), m); }
+        default: {
+            let s = surface_at(p, eye, hit.t);
+            return diffuse_only(s, material_at(p, s.point));
+        }
     }
 }
 

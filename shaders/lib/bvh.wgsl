@@ -80,6 +80,11 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     // 8 high) and last: choosing the planes by the direction's sign saves the
     // per-axis min and max of the textbook slab test.
     let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), inv_dir < vec3<f32>(0.0));
+    // Infinite planes have no bounds to put in the tree: every ray tests them,
+    // first, so that a floor it hits already shortens the walk.
+    if HAS_PLANES && test_prims(uniforms.plane_first, uniforms.plane_count, ray, frame, t_min, &t_max, &hit, any_hit, tinted) {
+        return hit;
+    }
     var top = 0u;
     var index = uniforms.bvh_root;
     // The root's grid (unused when the root is a leaf).
@@ -125,37 +130,57 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
         if index != NEEDS_POP {
             hit.nodes++;
             let leaf = nodes[index & ~LEAF].quantized;
-            for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
-                if !any_hit {
-                    // Equal distances (coincident surfaces) go to the lower object
-                    // id, so the winner does not depend on the order of visits.
-                    let t = intersect_prim(i, ray, frame, t_min, next_up(t_max));
-                    let closer = t < t_max || (t == t_max && hit.t != MISS && prims[i].object < prims[hit.prim].object);
-                    if t != MISS && closer {
-                        t_max = t;
-                        hit.t = t;
-                        hit.prim = i;
-                    }
-                    continue;
-                }
-                let t = intersect_prim(i, ray, frame, t_min, t_max);
-                if t == MISS {
-                    continue;
-                }
-                let m = materials[prim_material(prims[i])];
-                if tinted && any(m.transmit > vec3<f32>(0.0)) {
-                    hit.transmittance *= m.transmit;
-                } else {
-                    hit.t = t;
-                    hit.prim = i;
-                    hit.transmittance = vec3<f32>(0.0);
-                    return hit;
-                }
+            if test_prims(leaf.x, leaf.y, ray, frame, t_min, &t_max, &hit, any_hit, tinted) {
+                return hit;
             }
         }
         index = pop(&top, t_max, &grid);
     }
     return hit;
+}
+
+// Tests primitives first .. first + count (a leaf's, or the infinite planes)
+// as `traverse` asks, narrowing `t_max` to the closest hit so far; true when
+// an any-hit query has its answer.
+fn test_prims(
+    first: u32,
+    count: u32,
+    ray: Ray,
+    frame: RayFrame,
+    t_min: f32,
+    t_max: ptr<function, f32>,
+    hit: ptr<function, Hit>,
+    any_hit: bool,
+    tinted: bool,
+) -> bool {
+    for (var i = first; i < first + count; i++) {
+        if !any_hit {
+            // Equal distances (coincident surfaces) go to the lower object
+            // id, so the winner does not depend on the order of visits.
+            let t = intersect_prim(i, ray, frame, t_min, next_up(*t_max));
+            let closer = t < *t_max || (t == *t_max && (*hit).t != MISS && prims[i].object < prims[(*hit).prim].object);
+            if t != MISS && closer {
+                *t_max = t;
+                (*hit).t = t;
+                (*hit).prim = i;
+            }
+            continue;
+        }
+        let t = intersect_prim(i, ray, frame, t_min, *t_max);
+        if t == MISS {
+            continue;
+        }
+        let m = materials[prim_material(prims[i])];
+        if tinted && any(m.transmit > vec3<f32>(0.0)) {
+            (*hit).transmittance *= m.transmit;
+        } else {
+            (*hit).t = t;
+            (*hit).prim = i;
+            (*hit).transmittance = vec3<f32>(0.0);
+            return true;
+        }
+    }
+    return false;
 }
 
 // The most recently pushed node still closer than `t_max`, or NO_NODE; the

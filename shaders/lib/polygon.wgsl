@@ -3,16 +3,11 @@
 // alike. The crossing test runs in the ray's frame (ray_frame.wgsl), where the
 // hit point is the origin and each edge's side is an exact function of its two
 // sheared vertices, so polygons sharing an edge leave no gap and no overlap.
-// import: bindings ray_frame types
+// import: bindings plane ray_frame types
 
 fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
-    let n = p.a.xyz;
-    let denom = dot(n, ray.dir);
-    if denom == 0.0 {
-        return MISS;
-    }
-    let t = (p.a.w - dot(n, ray.origin)) / denom;
-    if !(t > t_min && t < t_max) {
+    let t = plane_intersect(p, ray, t_min, t_max);
+    if t == MISS {
         return MISS;
     }
     // Count the edges crossing the +x half-line from the origin. A vertex on
@@ -36,8 +31,4 @@ fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f
         prev = cur;
     }
     return select(MISS, t, inside);
-}
-
-fn polygon_normal(p: GpuPrim) -> vec3<f32> {
-    return p.a.xyz;
 }

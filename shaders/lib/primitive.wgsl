@@ -1,17 +1,29 @@
 // Dispatch on primitive kind: intersection and surface normals.
-// import: bindings cone polygon ray_frame sphere triangle types
+// import: bindings cone plane polygon ray_frame sphere triangle types
 
 // Takes the primitive's index, not its value: each case then loads only the
 // fields its kind uses (a load per SIMD lane is what a software rasteriser
 // pays most for). Triangles and polygons are tested in the ray's frame, which
-// the caller makes once per ray.
+// the caller makes once per ray. The HAS_ flags of the kernel's specialisation
+// (glint-scene's specialization.rs) remove the tests of kinds the scene lacks.
 fn intersect_prim(i: u32, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
-    switch prim_kind(prims[i]) {
-        case PRIM_SPHERE: { return sphere_intersect(prims[i], ray, t_min, t_max); }
-        case PRIM_TRIANGLE: { return triangle_intersect(prims[i], frame, t_min, t_max); }
-        case PRIM_POLYGON: { return polygon_intersect(prims[i], ray, frame, t_min, t_max); }
-        default: { return cone_intersect(prims[i], ray, t_min, t_max); }
+    let kind = prim_kind(prims[i]);
+    if HAS_SPHERES && kind == PRIM_SPHERE {
+        return sphere_intersect(prims[i], ray, t_min, t_max);
     }
+    if HAS_TRIANGLES && kind == PRIM_TRIANGLE {
+        return triangle_intersect(prims[i], frame, t_min, t_max);
+    }
+    if HAS_POLYGONS && kind == PRIM_POLYGON {
+        return polygon_intersect(prims[i], ray, frame, t_min, t_max);
+    }
+    if HAS_CONES && kind == PRIM_CONE {
+        return cone_intersect(prims[i], ray, t_min, t_max);
+    }
+    if HAS_PLANES && kind == PRIM_PLANE {
+        return plane_intersect(prims[i], ray, t_min, t_max);
+    }
+    return MISS;
 }
 
 struct Surface {
@@ -27,23 +39,19 @@ fn surface_at(p: GpuPrim, ray: Ray, t: f32) -> Surface {
     let point = ray.origin + t * ray.dir;
     var geometric: vec3<f32>;
     var shading: vec3<f32>;
-    switch prim_kind(p) {
-        case PRIM_SPHERE: {
-            geometric = sphere_normal(p, point);
-            shading = geometric;
-        }
-        case PRIM_TRIANGLE: {
-            geometric = triangle_geometric_normal(p);
-            shading = triangle_shading_normal(p, point);
-        }
-        case PRIM_POLYGON: {
-            geometric = polygon_normal(p);
-            shading = geometric;
-        }
-        default: {
-            geometric = cone_normal(p, point);
-            shading = geometric;
-        }
+    let kind = prim_kind(p);
+    if HAS_SPHERES && kind == PRIM_SPHERE {
+        geometric = sphere_normal(p, point);
+        shading = geometric;
+    } else if HAS_TRIANGLES && kind == PRIM_TRIANGLE {
+        geometric = triangle_geometric_normal(p);
+        shading = triangle_shading_normal(p, point);
+    } else if (HAS_POLYGONS && kind == PRIM_POLYGON) || (HAS_PLANES && kind == PRIM_PLANE) {
+        geometric = plane_normal(p);
+        shading = geometric;
+    } else if HAS_CONES {
+        geometric = cone_normal(p, point);
+        shading = geometric;
     }
     let backface = dot(geometric, ray.dir) > 0.0;
     let sign = select(1.0, -1.0, backface);

@@ -4,7 +4,7 @@
 // colour contributes to the pixel. The tree is handed, ray by ray and term by
 // term, to the kernel's `note_` functions: the trace kernel's do nothing, the
 // probe kernel's record the tree for `glint probe` and the viewer's inspector.
-// import: bindings bvh dispatch primitive reflect refract shade types
+// import: bindings bvh checker dispatch primitive reflect refract shade types
 
 struct PendingRay {
     ray: Ray,
@@ -38,8 +38,8 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             continue;
         }
         let p = prims[hit.prim];
-        let m = materials[prim_material(p)];
         let s = surface_at(p, ray, hit.t);
+        let m = material_at(p, s.point);
         note_hit(s, hit.prim);
         let local = shade(s, m, -ray.dir);
         var weight = pending.weight;

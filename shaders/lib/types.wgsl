@@ -29,6 +29,12 @@ struct SceneUniforms {
     flags: u32,
     // The BVH record traversal starts from.
     bvh_root: u32,
+    // The infinite planes, prims[plane_first .. plane_first + plane_count],
+    // which every ray tests besides the BVH.
+    plane_first: u32,
+    plane_count: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // Written before each dispatch: the region it covers and the sample it adds.
@@ -70,6 +76,9 @@ struct GpuMaterial {
     shininess: f32,
     f0: vec3<f32>,
     ior: f32,
+    // O_d of the checker's odd tiles (with MATERIAL_CHECKER).
+    checker: vec3<f32>,
+    checker_size: f32,
     flags: u32,
     _pad0: u32,
     _pad1: u32,

@@ -29,6 +29,12 @@ pub struct BenchArgs {
     /// One JSON object per scene per line
     #[arg(long)]
     json: bool,
+    /// Measure what a first render pays instead: each kernel's pipeline
+    /// creation for each scene's primitive kinds (the driver's compile), and
+    /// the first frame against a warm one. Run with
+    /// MESA_SHADER_CACHE_DISABLE=true to see what a fresh machine pays.
+    #[arg(long)]
+    cold: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -67,6 +73,9 @@ struct Measurement {
 pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
     let gpu = Gpu::new()?;
+    if args.cold {
+        return crate::bench_cold::run(&gpu, &scenes, args.width, args.height, args.json);
+    }
     let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
     let acceleration = match args.accel {
         AccelArg::Bvh => Acceleration::Bvh,

@@ -115,7 +115,7 @@ pub fn summary(name: &str, scene: &Scene) -> String {
     line("", format!("v = {}  up", vector(basis.v)));
     line("", format!("w = {}  backwards, from look_at to the eye", vector(basis.w)));
 
-    let (mut spheres, mut triangles, mut polygons, mut cones, mut cylinders) = (0, 0, 0, 0, 0);
+    let (mut spheres, mut triangles, mut polygons, mut cones, mut cylinders, mut planes) = (0, 0, 0, 0, 0, 0);
     for shape in scene.objects.iter().flat_map(|o| &o.shapes) {
         match shape {
             Shape::Sphere { .. } => spheres += 1,
@@ -123,6 +123,7 @@ pub fn summary(name: &str, scene: &Scene) -> String {
             Shape::Polygon { .. } => polygons += 1,
             Shape::Cone { base_radius, apex_radius, .. } if base_radius == apex_radius => cylinders += 1,
             Shape::Cone { .. } => cones += 1,
+            Shape::Plane { .. } => planes += 1,
         }
     }
     let primitives = counts(&[
@@ -131,6 +132,7 @@ pub fn summary(name: &str, scene: &Scene) -> String {
         (polygons, "polygon", "polygons"),
         (cones, "cone", "cones"),
         (cylinders, "cylinder", "cylinders"),
+        (planes, "infinite plane", "infinite planes"),
     ]);
     let n = scene.primitive_count();
     line("objects", format!("{}, made of {n} primitive{}: {primitives}", scene.objects.len(), if n == 1 { "" } else { "s" }));
@@ -147,12 +149,14 @@ pub fn summary(name: &str, scene: &Scene) -> String {
     let bounds = scene
         .objects
         .iter()
-        .flat_map(|o| o.shapes.iter().map(Shape::bounds))
+        .flat_map(|o| o.shapes.iter().filter_map(Shape::bounds))
         .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+    let unbounded = if planes > 0 { " and infinite planes" } else { "" };
     line(
         "bounds",
         match bounds {
-            Some((lo, hi)) => format!("{} to {}", vector(lo.as_dvec3()), vector(hi.as_dvec3())),
+            Some((lo, hi)) => format!("{} to {}{unbounded}", vector(lo.as_dvec3()), vector(hi.as_dvec3())),
+            None if planes > 0 => "infinite planes only".into(),
             None => "none (no objects)".into(),
         },
     );
@@ -182,6 +186,24 @@ pub fn summary(name: &str, scene: &Scene) -> String {
         render.push_str(&format!("; depth cue from {} to {}", num(f64::from(cue.near)), num(f64::from(cue.far))));
     }
     line("render", render);
+    if let Some(a) = &scene.animation {
+        use glint_scene::animation::{CameraTrack, Interpolation};
+        let mut moves = vec![match &a.camera {
+            None => "the camera still".to_string(),
+            Some(CameraTrack::Orbit(o)) => {
+                let s = if o.turns.abs() == 1.0 { "" } else { "s" };
+                format!("the camera orbiting {} turn{s} about {}", num(f64::from(o.turns)), vector(o.center.as_dvec3()))
+            }
+            Some(CameraTrack::Keys(keys)) => counts(&[(keys.len(), "camera key", "camera keys")]),
+        }];
+        if !a.lights.is_empty() {
+            moves.push(counts(&[(a.lights.len(), "light keyed", "lights keyed")]));
+        }
+        if matches!(a.camera, Some(CameraTrack::Keys(_))) || !a.lights.is_empty() {
+            moves.push(format!("{} interpolation", if a.interpolation == Interpolation::Smooth { "smooth" } else { "linear" }));
+        }
+        line("animation", format!("{} frames at {} fps: {}", a.frames, num(f64::from(a.fps)), moves.join(", ")));
+    }
     line("warnings", if scene.warnings.is_empty() { "none".into() } else { format!("{} (on stderr)", scene.warnings.len()) });
     out
 }

@@ -2,20 +2,56 @@
 //! units and the range the picture maps to colour, with the range found in
 //! this image. README.md's "Debug views" table gives the same formulas.
 
+use std::collections::BTreeSet;
+
 use glint_gpu::{Channels, Image};
 use glint_scene::gpu_types::View;
 
-/// The linear values of the first channel at the pixels where the eye ray hit
-/// something, as (min, max, mean); `None` when it hit nothing anywhere.
-fn hit_range(image: &Image, hit: impl Fn(f32) -> bool) -> Option<(f32, f32, f64)> {
-    let values: Vec<f32> = image.linear.iter().map(|p| p[0]).filter(|&v| hit(v)).collect();
-    if values.is_empty() {
-        return None;
+/// What a legend says about the image's values, gathered tile by tile as
+/// the image is rendered, so no image need be kept for it.
+#[derive(Debug)]
+pub struct Summary {
+    view: View,
+    /// The first linear channel where the eye ray hit something (for depth,
+    /// where it is finite): how many, least, greatest and sum.
+    hits: u64,
+    min: f32,
+    max: f32,
+    sum: f64,
+    /// The largest linear channel of any pixel.
+    brightest: f32,
+    /// The object ids seen.
+    ids: BTreeSet<i64>,
+}
+
+impl Summary {
+    pub fn new(view: View) -> Self {
+        Self { view, hits: 0, min: f32::INFINITY, max: f32::NEG_INFINITY, sum: 0.0, brightest: 0.0, ids: BTreeSet::new() }
     }
-    let min = values.iter().copied().fold(f32::INFINITY, f32::min);
-    let max = values.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-    let mean = values.iter().map(|&v| f64::from(v)).sum::<f64>() / values.len() as f64;
-    Some((min, max, mean))
+
+    /// Adds the pixels of a tile (or a whole image), as resolved for the view.
+    pub fn add(&mut self, tile: &Image) {
+        let firsts = tile.linear.iter().map(|p| p[0]);
+        match self.view {
+            View::Depth | View::Heatmap | View::RayDepth | View::RayCount => {
+                for v in firsts.filter(|&v| self.view != View::Depth || v.is_finite()) {
+                    self.hits += 1;
+                    self.min = self.min.min(v);
+                    self.max = self.max.max(v);
+                    self.sum += f64::from(v);
+                }
+            }
+            View::Diffuse => self.brightest = tile.linear.iter().map(|p| p[0].max(p[1]).max(p[2])).fold(self.brightest, f32::max),
+            View::Id => self.ids.extend(firsts.filter(|&v| v >= 0.0).map(|v| v as i64)),
+            _ => {}
+        }
+    }
+
+    /// (min, max, mean) of the first channel where the eye ray hit something;
+    /// `None` when it hit nothing anywhere.
+    fn hit_range(&self) -> Option<(f32, f32, f64)> {
+        (self.hits > 0).then(|| (self.min, self.max, self.sum / self.hits as f64))
+    }
 }
 
 /// A number with about three significant digits.
@@ -40,12 +76,13 @@ pub fn channels(view: View) -> Channels {
     }
 }
 
-/// The legend of `view` for `image`, or `None` for the shaded render.
-/// `scale` is the view scale the image was resolved with, `bvh_nodes` and
-/// `objects` the scene's counts.
-pub fn legend(view: View, image: &Image, scale: f32, bvh_nodes: usize, objects: usize) -> Option<String> {
+/// The legend of the image `summary` sums up, or `None` for the shaded
+/// render. `scale` is the view scale the image was resolved with,
+/// `bvh_nodes` and `objects` the scene's counts.
+pub fn legend(summary: &Summary, scale: f32, bvh_nodes: usize, objects: usize) -> Option<String> {
+    let view = summary.view;
     let tree_range = || {
-        hit_range(image, |_| true).map_or(String::new(), |(min, max, mean)| {
+        summary.hit_range().map_or(String::new(), |(min, max, mean)| {
             format!("; this image {} to {}, mean {}", short(min.into()), short(max.into()), short(mean))
         })
     };
@@ -56,7 +93,8 @@ pub fn legend(view: View, image: &Image, scale: f32, bvh_nodes: usize, objects: 
 (x → red, y → green, z → blue: (0.5, 1, 0.5) faces up); misses black"
             .into(),
         View::Depth => {
-            let range = hit_range(image, f32::is_finite)
+            let range = summary
+                .hit_range()
                 .map_or(nothing.into(), |(min, max, _)| format!("nearest hit {}, farthest {}", short(min.into()), short(max.into())));
             format!(
                 "depth: distance t along the eye ray in scene units, white at 0 to black at {} (the farthest corner \
@@ -66,7 +104,7 @@ of the scene's bounds); misses black (+inf in .pfm/.exr); {range}",
         }
         View::Albedo => "albedo: the diffuse colour O_d of the material hit, unlit; misses black".into(),
         View::Diffuse => {
-            let brightest = image.linear.iter().map(|p| p[0].max(p[1]).max(p[2])).fold(0.0, f32::max);
+            let brightest = summary.brightest;
             let mut text = format!(
                 "diffuse: direct diffuse light Σ k_d·O_d·I_l·max(0, N·L)·V/d² over the lights, d the distance to \
 each light in scene units (always 1/d², whatever the scene's attenuation; d = 1 for a directional light), no \
@@ -80,18 +118,16 @@ ambient, highlights or mirrors; brightest value {}",
             text
         }
         View::Id => {
-            let mut visible: Vec<i64> = image.linear.iter().map(|p| p[0]).filter(|&v| v >= 0.0).map(|v| v as i64).collect();
-            visible.sort_unstable();
-            visible.dedup();
             format!(
                 "id: object index, 0 to {} in file order ({objects} objects), one colour each; misses black (-1 in \
 .pfm/.exr); {} objects seen",
                 objects.saturating_sub(1),
-                visible.len()
+                summary.ids.len()
             )
         }
         View::Heatmap => {
-            let range = hit_range(image, |_| true)
+            let range = summary
+                .hit_range()
                 .map_or(nothing.into(), |(min, max, mean)| format!("this image {} to {}, mean {}", short(min.into()), short(max.into()), short(mean)));
             format!(
                 "heatmap: BVH nodes visited by each eye ray, blue at 0 through green to red at {} (2·log2 of the \
@@ -116,24 +152,31 @@ ambient, highlights or mirrors; brightest value {}",
 mod tests {
     use super::*;
 
-    fn image(values: &[f32]) -> Image {
-        let linear: Vec<[f32; 4]> = values.iter().map(|&v| [v, v, v, 1.0]).collect();
-        Image { width: values.len() as u32, height: 1, display: linear.clone(), linear }
+    /// The summary of `view` over an image of `values`, given in tiles of two pixels.
+    fn image(view: View, values: &[f32]) -> Summary {
+        let mut summary = Summary::new(view);
+        for tile in values.chunks(2) {
+            let linear: Vec<[f32; 4]> = tile.iter().map(|&v| [v, v, v, 1.0]).collect();
+            summary.add(&Image { width: tile.len() as u32, height: 1, display: linear.clone(), linear });
+        }
+        summary
     }
 
     #[test]
     fn legends_state_the_range_and_units() {
-        let depth = legend(View::Depth, &image(&[2.0, f32::INFINITY, 5.5]), 12.0, 9, 3).unwrap();
+        let depth = legend(&image(View::Depth, &[2.0, f32::INFINITY, 5.5]), 12.0, 9, 3).unwrap();
         assert!(depth.contains("scene units") && depth.contains("black at 12") && depth.contains("nearest hit 2, farthest 5.5"), "{depth}");
-        let id = legend(View::Id, &image(&[-1.0, 0.0, 2.0, 2.0]), 1.0, 9, 3).unwrap();
+        let id = legend(&image(View::Id, &[-1.0, 0.0, 2.0, 2.0]), 1.0, 9, 3).unwrap();
         assert!(id.contains("0 to 2 in file order (3 objects)") && id.contains("2 objects seen"), "{id}");
-        let heat = legend(View::Heatmap, &image(&[3.0, 7.0]), 14.3, 41, 3).unwrap();
+        let heat = legend(&image(View::Heatmap, &[3.0, 7.0, 5.0]), 14.3, 41, 3).unwrap();
         assert!(heat.contains("red at 14.3") && heat.contains("41 nodes") && heat.contains("this image 3 to 7, mean 5"), "{heat}");
-        let diffuse = legend(View::Diffuse, &image(&[0.0, 0.02]), 1.0, 9, 3).unwrap();
+        let diffuse = legend(&image(View::Diffuse, &[0.0, 0.02, 0.01]), 1.0, 9, 3).unwrap();
         assert!(diffuse.contains("1/d²") && diffuse.contains("brightest value 0.02: try --exposure 50"), "{diffuse}");
-        assert!(legend(View::Shaded, &image(&[1.0]), 1.0, 9, 3).is_none());
+        assert!(legend(&image(View::Shaded, &[1.0]), 1.0, 9, 3).is_none());
         for view in [View::Normal, View::Depth, View::Albedo, View::Diffuse, View::Id, View::Heatmap] {
-            assert_eq!(legend(view, &image(&[0.5]), 1.0, 9, 3).unwrap().lines().count(), 1);
+            assert_eq!(legend(&image(view, &[0.5]), 1.0, 9, 3).unwrap().lines().count(), 1);
         }
+        let nothing = legend(&image(View::Depth, &[f32::INFINITY; 3]), 12.0, 9, 3).unwrap();
+        assert!(nothing.contains("the eye rays hit nothing"), "{nothing}");
     }
 }

@@ -1,8 +1,10 @@
 //! `glint`: render scenes on the GPU from the command line.
 
 mod bench;
+mod bench_cold;
 mod check;
 mod compare;
+mod frames;
 mod info;
 mod probe;
 mod legend;
@@ -111,6 +113,10 @@ fn main() -> ExitCode {
             return ExitCode::from(exit::USAGE);
         }
     };
+    if !matches!(cli.command, Command::View(_)) {
+        // SAFETY: no thread has been started yet.
+        unsafe { glint_gpu::prefer_lavapipe_width() };
+    }
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),

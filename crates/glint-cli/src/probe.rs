@@ -49,6 +49,8 @@ pub struct ProbeArgs {
 
 pub fn run(args: &ProbeArgs) -> Result<(), Failure> {
     let mut scene = glint_scene::load(&args.scene).map_err(|e| Failure::new(exit::INPUT, e))?;
+    // An animated scene at frame 0, the image `glint render` makes of it.
+    scene.set_frame(0);
     if let Some(d) = args.max_depth {
         scene.render.max_depth = d;
     }

@@ -1,13 +1,13 @@
 //! `glint render`: load → build BVH → pack → upload → dispatch → resolve → write.
 
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
-use glint_gpu::{Acceleration, Format, Gpu, Image, PngBits, RayStats, Region, RenderOptions, Renderer, ToneMap};
+use glint_gpu::{Acceleration, Format, Gpu, ImageSink, PngBits, Prepared, RayStats, Region, RenderOptions, Renderer, StagedImage, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::MAX_IMAGE_SIDE;
@@ -83,6 +83,12 @@ pub struct RenderArgs {
     /// No progress bar or timing line
     #[arg(short, long)]
     quiet: bool,
+    /// Trace tiles of at most N pixels, as if the device could hold no more
+    /// (for tests of tiled rendering on any device)
+    #[arg(long, value_name = "N", hide = true, value_parser = clap::value_parser!(u64).range(1..))]
+    max_tile_pixels: Option<u64>,
+    #[command(flatten)]
+    animation: crate::frames::FrameArgs,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -291,6 +297,12 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     let (width, height) = image_size(args.width, args.height, (scene.width, scene.height))?;
     let region = render_region(args, width, height)?;
+    let outputs: Vec<&Path> = std::iter::once(&args.output).chain(args.aov.iter().map(|(_, p)| p)).map(PathBuf::as_path).collect();
+    let plan = args.animation.plan(&scene, &outputs, region == Region::whole(width, height))?;
+    for path in plan.all_paths() {
+        check_output(&path)?;
+    }
+    scene.set_frame(plan.frames.start);
     if let Some(d) = args.max_depth {
         scene.render.max_depth = d;
     }
@@ -303,7 +315,11 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         eprintln!("glint: {warning}");
     }
     let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
-    let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
+    let renderer = match args.max_tile_pixels {
+        Some(pixels) => renderer.with_max_tile_pixels(pixels),
+        None => renderer,
+    };
+    let mut prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
 
     let view = args.view.view();
     let options = RenderOptions {
@@ -325,57 +341,111 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     };
     let bar = progress_bar(args.quiet);
     let start = Instant::now();
-    let (image, stats) = renderer.render_region(&prepared.buffers, region, &options, &mut |done, total| {
-        if start.elapsed() > Duration::from_secs(1) && bar.is_hidden() && !args.quiet && std::io::stderr().is_terminal() {
-            bar.set_draw_target(ProgressDrawTarget::stderr());
+    let (mut stats, mut legend) = (RayStats::default(), None);
+    let count = plan.frames.len() as u64;
+    // The device keeps the scene and its BVH; a frame writes only its camera and lights.
+    for (i, frame) in plan.frames.clone().enumerate() {
+        scene.set_frame(frame);
+        renderer.pose(&mut prepared, &scene)?;
+        let options = RenderOptions { view_scale: prepared.view_scale(view), ..options };
+        let paths = |path: &Path| plan.path(path, frame);
+        let (frame_stats, summary) = render_frame(&renderer, &prepared, region, &options, args, &paths, &mut |done, total| {
+            if start.elapsed() > Duration::from_secs(1) && bar.is_hidden() && !args.quiet && std::io::stderr().is_terminal() {
+                bar.set_draw_target(ProgressDrawTarget::stderr());
+            }
+            bar.set_length(total * count);
+            bar.set_position(i as u64 * total + done);
+        })?;
+        stats = stats + frame_stats;
+        // A legend tells one image's range.
+        if count == 1 {
+            legend = crate::legend::legend(&summary, options.view_scale, prepared.bvh_nodes, scene.objects.len());
         }
-        bar.set_length(total);
-        bar.set_position(done);
-    })?;
+    }
     let elapsed = start.elapsed();
     bar.finish_and_clear();
 
-    // Every image is rendered before any is written, so a failure writes nothing.
-    let image = if view == View::Depth { image.with_misses_at_infinity() } else { image };
-    let legend = crate::legend::legend(view, &image, options.view_scale, prepared.bvh_nodes, scene.objects.len());
-    let mut outputs: Vec<(Image, &PathBuf, View)> = vec![(image, &args.output, view)];
-    for (aov, path) in &args.aov {
-        let aov_view = aov.view();
-        let aov_options = RenderOptions { view: aov_view, spp: 1, view_scale: prepared.view_scale(aov_view), ..options };
-        let (image, _) = renderer.render_region(&prepared.buffers, region, &aov_options, &mut |_, _| {})?;
-        outputs.push((if aov_view == View::Depth { image.with_misses_at_infinity() } else { image }, path, aov_view));
-    }
-    let bits = match args.bits {
-        BitsArg::Eight => PngBits::Eight,
-        BitsArg::Sixteen => PngBits::Sixteen,
-    };
-    let part = (region != Region::whole(width, height)).then_some(Placement { width, height, region });
-    for (image, path, view) in &outputs {
-        glint_gpu::write_image_channels(image, path, bits, crate::legend::channels(*view))?;
-        if let Some(placement) = &part {
-            glint_gpu::stitch::write_placement(path, placement)?;
-        }
-    }
-
     if !args.quiet {
-        let part = if part.is_some() { format!(" (region {region} of {width}x{height})") } else { String::new() };
+        let part = if region != Region::whole(width, height) { format!(" (region {region} of {width}x{height})") } else { String::new() };
+        let (frames, written) = match count {
+            1 => (String::new(), plan.path(&args.output, plan.frames.start).display().to_string()),
+            n => (format!("{n} frames of "), format!("{} (frames {}..{})", args.output.display(), plan.frames.start, plan.frames.end)),
+        };
         eprintln!(
-            "glint: rendered {}x{}{part} in {:.3} s, {:.2} Mrays/s ({} rays) -> {}",
+            "glint: rendered {frames}{}x{}{part} in {:.3} s, {:.2} Mrays/s ({} rays) -> {written}",
             region.width(),
             region.height(),
             elapsed.as_secs_f64(),
             stats.total() as f64 / elapsed.as_secs_f64() / 1e6,
             stats.total(),
-            args.output.display()
         );
         if let Some(legend) = legend {
             eprintln!("glint: {legend}");
         }
     }
+    plan.encode_video(args.quiet)?;
     if args.stats {
         print_stats(&stats, args.json);
     }
     Ok(())
+}
+
+/// Renders one frame: the output and its AOVs, at `paths` of the names given.
+/// Every file is complete under a temporary name before any appears, so a
+/// failure writes none of them.
+fn render_frame(
+    renderer: &Renderer,
+    prepared: &Prepared,
+    region: Region,
+    options: &RenderOptions,
+    args: &RenderArgs,
+    paths: &dyn Fn(&Path) -> PathBuf,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<(RayStats, crate::legend::Summary), Failure> {
+    let bits = match args.bits {
+        BitsArg::Eight => PngBits::Eight,
+        BitsArg::Sixteen => PngBits::Sixteen,
+    };
+    let (width, height) = (prepared.buffers.width(), prepared.buffers.height());
+    let part = (region != Region::whole(width, height)).then_some(Placement { width, height, region });
+    let output = paths(&args.output);
+    let (main, stats, summary) = render_to_file(renderer, &prepared.buffers, region, options, &output, bits, progress)?;
+    let mut staged = vec![(main, output)];
+    for (aov, path) in &args.aov {
+        let aov_view = aov.view();
+        let aov_options = RenderOptions { view: aov_view, spp: 1, view_scale: prepared.view_scale(aov_view), ..*options };
+        let path = paths(path);
+        staged.push((render_to_file(renderer, &prepared.buffers, region, &aov_options, &path, bits, &mut |_, _| {})?.0, path));
+    }
+    for (file, path) in staged {
+        file.commit()?;
+        if let Some(placement) = &part {
+            glint_gpu::stitch::write_placement(&path, placement)?;
+        }
+    }
+    Ok((stats, summary))
+}
+
+/// Renders `region` with `options` into the file for `path`, each tile going
+/// to the file as it is read back (a depth view's misses as +∞) and into the
+/// summary its legend is made from; the file is complete but not yet at `path`.
+fn render_to_file(
+    renderer: &Renderer,
+    buffers: &glint_gpu::SceneBuffers,
+    region: Region,
+    options: &RenderOptions,
+    path: &Path,
+    bits: PngBits,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<(StagedImage, RayStats, crate::legend::Summary), Failure> {
+    let mut sink = ImageSink::create(path, region.width(), region.height(), bits, crate::legend::channels(options.view))?;
+    let mut summary = crate::legend::Summary::new(options.view);
+    let stats = renderer.render_tiles(buffers, region, options, progress, &mut |tile, pixels| {
+        let pixels = if options.view == View::Depth { pixels.with_misses_at_infinity() } else { pixels };
+        summary.add(&pixels);
+        sink.paste(&pixels, tile.x0 - region.x0, tile.y0 - region.y0)
+    })?;
+    Ok((sink.finish()?, stats, summary))
 }
 
 fn progress_bar(quiet: bool) -> ProgressBar {

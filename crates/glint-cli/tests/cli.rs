@@ -60,6 +60,41 @@ fn info_names_the_adapter_and_limits() {
     }
 }
 
+/// `glint` with the lavapipe width `width` (`None`: the environment chooses none).
+fn glint_at_width(width: Option<&str>, args: &[&str]) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
+    command.args(args).env(glint_gpu::ADAPTER_ENV, "llvmpipe");
+    match width {
+        Some(w) => command.env(glint_gpu::LAVAPIPE_WIDTH_ENV, w),
+        None => command.env_remove(glint_gpu::LAVAPIPE_WIDTH_ENV),
+    };
+    command.output().expect("glint runs")
+}
+
+/// On lavapipe `glint` asks for the SIMD width its kernels compile fastest
+/// at, unless the environment chooses one, and the width changes no pixel.
+#[test]
+fn lavapipe_gets_the_width_glint_asks_for_and_it_changes_no_pixel() {
+    let adapter = |width| {
+        let o = glint_at_width(width, &["info"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        String::from_utf8(o.stdout).unwrap().lines().next().unwrap_or_default().to_string()
+    };
+    let asked = format!("{} bits", glint_gpu::LAVAPIPE_WIDTH);
+    assert!(adapter(None).contains(&asked), "{}", adapter(None));
+    assert!(adapter(Some("256")).contains("256 bits"), "{}", adapter(Some("256")));
+
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scenes().join("showcase.toml");
+    let render = |width, name: &str| {
+        let out = dir.path().join(name);
+        let o = glint_at_width(width, &["render", scene.to_str().unwrap(), "--width", "96", "--height", "64", "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(out).unwrap()
+    };
+    assert!(render(None, "asked.exr") == render(Some("256"), "wide.exr"), "the image depends on lavapipe's vector width");
+}
+
 #[test]
 fn bad_inputs_fail_with_one_line_and_leave_no_file() {
     let dir = tempfile::tempdir().unwrap();

@@ -179,7 +179,7 @@ fn debug_views_print_a_legend_with_their_range_and_units() {
     for (view, needles) in [
         ("depth", &["glint: depth: distance t along the eye ray in scene units, white at 0 to black at ", "nearest hit ", "farthest "][..]),
         ("heatmap", &["glint: heatmap: BVH nodes visited by each eye ray, blue at 0 through green to red at ", "this image "][..]),
-        ("id", &["glint: id: object index, 0 to 148 in file order (149 objects)", "objects seen"][..]),
+        ("id", &["glint: id: object index, 0 to 5 in file order (6 objects)", "objects seen"][..]),
         ("diffuse", &["glint: diffuse: direct diffuse light Σ k_d·O_d·I_l·max(0, N·L)·V/d²", "try --exposure"][..]),
         ("normal", &["glint: normal: the unit geometric normal N", "0.5 + 0.5·N"][..]),
         ("albedo", &["glint: albedo: the diffuse colour O_d"][..]),
@@ -273,6 +273,19 @@ fn one_side_alone_keeps_the_scene_aspect_ratio() {
 }
 
 #[test]
+fn check_counts_infinite_planes_apart_from_the_bounds() {
+    let dir = tempfile::tempdir().unwrap();
+    let floor = "[[object]]\ntype = \"plane\"\npoint = [0, -1, 0]\nnormal = [0, 1, 0]\n\n";
+    let ball = "[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n";
+    let path = scene(dir.path(), "floor.toml", "40", &format!("{floor}{ball}"));
+    let text = stdout(&glint(&["check", path.to_str().unwrap()]));
+    assert!(text.contains("  objects    2, made of 2 primitives: 1 sphere, 1 infinite plane\n"), "{text}");
+    assert!(text.contains("  bounds     (-1, -1, -1) to (1, 1, 1) and infinite planes\n"), "{text}");
+    let path = scene(dir.path(), "plane.toml", "40", floor);
+    assert!(stdout(&glint(&["check", path.to_str().unwrap()])).contains("  bounds     infinite planes only\n"));
+}
+
+#[test]
 fn check_summarises_scenes_without_a_gpu() {
     let dir = tempfile::tempdir().unwrap();
     // Environments in which no GPU can be had: `glint info` fails in them, `glint check` does not care.
@@ -292,10 +305,10 @@ fn check_summarises_scenes_without_a_gpu() {
         "u = (1, 0, 0)  right\n",
         "v = (0, 0.9806, -0.1961)  up\n",
         "w = (0, 0.1961, 0.9806)  backwards, from look_at to the eye\n",
-        "  objects    149, made of 149 primitives: 3 spheres, 144 polygons, 1 cone, 1 cylinder\n",
+        "  objects    6, made of 6 primitives: 3 spheres, 1 polygon, 1 cone, 1 cylinder\n",
         "  lights     2: 2 point; ambient 0.2\n",
         "  bounds     (-9, 0, -9) to (9, 2, 9)\n",
-        "  materials  7: default, dark_tile, glass, gold, light_tile, mirror, red\n",
+        "  materials  6: default, floor, glass, gold, mirror, red\n",
         "  render     max depth 6, cutoff 0.0039, shadows tinted, reflections on, refractions on; depth cue from 6 to 30\n",
         "  warnings   none\n",
         "spd:tetra:1: ok\n",

@@ -98,6 +98,42 @@ fn regions_and_their_aovs_stitch_into_the_single_render() {
     }
 }
 
+/// Tiles as small as a device too small for the image would need give the
+/// files, AOVs and legend of an untiled render: tiles of 50 pixels are
+/// narrower than the 61-pixel rows, tiles of 250 four whole rows.
+#[test]
+fn tiny_tiles_give_the_files_of_an_untiled_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[&str]); 4] = [
+        ("png", &["--spp", "3", "--filter", "tent", "--seed", "2"]),
+        ("png", &["--bits", "16", "--view", "heatmap"]),
+        ("exr", &["--spp", "2"]),
+        ("pfm", &["--view", "depth"]),
+    ];
+    let scene = showcase();
+    for (case, (ext, options)) in cases.iter().enumerate() {
+        let files = |name: &str| (dir.path().join(format!("{name}{case}.{ext}")), dir.path().join(format!("{name}{case}_depth.exr")));
+        let run = |out: &Path, depth: &Path, tiles: &[&str]| {
+            let aov = format!("depth={}", path(depth));
+            let mut args = vec!["render", &scene, "-o", path(out), "--width", "61", "--height", "37", "--aov", &aov];
+            args.extend_from_slice(options);
+            args.extend_from_slice(tiles);
+            let o = glint(&args);
+            assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+            // The legend, when the view has one; the line before it has the time.
+            stderr(&o).lines().skip(1).collect::<Vec<_>>().join("\n")
+        };
+        let (untiled, untiled_depth) = files("untiled");
+        let legend = run(&untiled, &untiled_depth, &[]);
+        for tile in ["50", "250"] {
+            let (tiled, tiled_depth) = files(&format!("tiles{tile}_"));
+            assert_eq!(run(&tiled, &tiled_depth, &["--max-tile-pixels", tile]), legend, "case {case}, tiles of {tile}");
+            assert_same_file(&untiled, &tiled);
+            assert_same_file(&untiled_depth, &tiled_depth);
+        }
+    }
+}
+
 /// What docs/scale-out.md does on a cluster, on this machine: N processes,
 /// each rendering its shard at the same time, then one stitch.
 #[test]

@@ -10,6 +10,28 @@ const NO_ADAPTER_HINT: &str = "no GPU adapter found: install a Vulkan driver; \
 without a GPU, lavapipe provides one (Debian/Ubuntu: apt-get install mesa-vulkan-drivers libvulkan1, \
 Mesa 25 or newer; on Debian 12 from bookworm-backports — `bash .ci/setup` does this)";
 
+/// The variable by which lavapipe's compiler (llvmpipe) picks its SIMD width.
+pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
+/// The width Glint's batch commands ask lavapipe for, in bits. The kernels
+/// are mostly per-lane work (divergent loads, private stacks) that 8-wide
+/// vectors do not speed up: with 4 lanes they trace as fast, to the same
+/// bits, and the driver compiles them in half the time, which a first image
+/// waits for (docs/performance.md, "Cold start"). Not for the viewer: Mesa
+/// 25.0's lavapipe corrupts its heap drawing egui at this width.
+pub const LAVAPIPE_WIDTH: &str = "128";
+
+/// Asks lavapipe for [`LAVAPIPE_WIDTH`]-bit vectors unless the environment
+/// already chooses a width; drivers read it when the first device is made.
+///
+/// # Safety
+/// Changes the process environment: call it before any other thread runs.
+pub unsafe fn prefer_lavapipe_width() {
+    if std::env::var_os(LAVAPIPE_WIDTH_ENV).is_none() {
+        // SAFETY: the caller guarantees no other thread reads the environment.
+        unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, LAVAPIPE_WIDTH) };
+    }
+}
+
 /// An open device with the adapter's own limits.
 pub struct Gpu {
     pub adapter: wgpu::Adapter,

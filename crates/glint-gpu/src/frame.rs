@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use glam::Vec3;
 use glint_scene::bvh::Bvh;
 use glint_scene::gpu_types::{self, View};
 use glint_scene::Scene;
@@ -64,21 +65,38 @@ impl Renderer {
         let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
         let uniforms = gpu_types::scene_uniforms(scene, width, height, packed.light_count, packed.bvh_root);
         let buffers = self.upload(&packed, uniforms)?;
-        let eye = scene.camera.eye;
-        let depth_extent = bounds
-            .iter()
-            .flat_map(|(lo, hi)| [*lo, *hi])
-            .map(|corner| corner.distance(eye))
-            .fold(0.0f32, f32::max)
-            .max(f32::MIN_POSITIVE);
         Ok(Prepared {
             buffers,
-            primitives: bounds.len(),
+            primitives: scene.primitive_count(),
             bvh_nodes: bvh.nodes.len(),
             bvh_build,
-            depth_extent,
+            depth_extent: depth_extent(&bounds, scene.camera.eye),
             max_depth: scene.render.max_depth,
             lights: packed.light_count,
         })
     }
+
+    /// Gives a prepared scene the camera and lights of `scene`, the same scene
+    /// posed at another frame (`Scene::set_frame`): only the lights and the
+    /// uniforms are written, nothing is rebuilt, and the depth view's extent
+    /// follows the eye.
+    pub fn pose(&self, prepared: &mut Prepared, scene: &Scene) -> Result<(), GpuError> {
+        let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
+        if lights.len() != prepared.lights as usize {
+            return Err(GpuError::Runtime(format!("{} lights are on, but the scene was prepared with {}", lights.len(), prepared.lights)));
+        }
+        let buffers = &prepared.buffers;
+        if !lights.is_empty() {
+            self.write_lights(buffers, &lights)?;
+        }
+        let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.bvh_root());
+        self.write_uniforms(buffers, &uniforms);
+        prepared.depth_extent = depth_extent(&gpu_types::primitive_bounds(scene), scene.camera.eye);
+        Ok(())
+    }
+}
+
+/// The distance from `eye` to the farthest corner of the primitives' bounds.
+fn depth_extent(bounds: &[(Vec3, Vec3)], eye: Vec3) -> f32 {
+    bounds.iter().flat_map(|(lo, hi)| [*lo, *hi]).map(|corner| corner.distance(eye)).fold(0.0f32, f32::max).max(f32::MIN_POSITIVE)
 }

@@ -8,8 +8,10 @@ use std::sync::{Arc, Mutex};
 
 use bytemuck::Zeroable;
 use glint_scene::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParams, SceneUniforms, View};
+use glint_scene::specialization::Specialization;
 
-use crate::renderer::{create_pipeline, STAT_BYTES};
+use crate::pipelines::create_pipeline;
+use crate::renderer::STAT_BYTES;
 use crate::shaders::{Kernel, ShaderSource};
 use crate::{GpuError, RayStats, Region, RenderOptions, Renderer, SceneBuffers};
 
@@ -86,7 +88,7 @@ impl SceneBuffers {
 impl Renderer {
     /// Compiles the present kernel from `source`.
     pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
-        let pipeline = create_pipeline(&self.device, source, Kernel::Present, None)?;
+        let pipeline = create_pipeline(&self.device, source, Kernel::Present, Specialization::ALL, None)?;
         Ok(PresentPipeline { pipeline })
     }
 
@@ -149,14 +151,15 @@ impl Renderer {
     /// waiting for the device. Ray counts add up on the device until a
     /// `RayCounter` collects them. Does nothing unless the scene's
     /// accumulation holds the whole image.
-    pub fn trace_rows(&self, scene: &SceneBuffers, sample_index: u32, options: &RenderOptions, rows: Range<u32>) {
+    pub fn trace_rows(&self, scene: &SceneBuffers, sample_index: u32, options: &RenderOptions, rows: Range<u32>) -> Result<(), GpuError> {
         let rows = rows.start.min(scene.height)..rows.end.min(scene.height);
         if rows.is_empty() || !scene.holds_whole_image() {
-            return;
+            return Ok(());
         }
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.encode_band(scene, Region::whole(scene.width, scene.height), sample_index, options, rows, &mut encoder);
+        self.encode_band(scene, Region::whole(scene.width, scene.height), sample_index, options, rows, &mut encoder)?;
         self.queue.submit([encoder.finish()]);
+        Ok(())
     }
 
     /// Empties the accumulated samples of `rows`, so the next sample traced
@@ -232,7 +235,7 @@ impl Renderer {
         let readback = self.readback_buffer(PIXEL_BYTES);
         let mut encoder = self.device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(&scene.accum, slot, &saved, 0, PIXEL_BYTES);
-        self.encode_dispatch(scene, View::Id, region, &mut encoder);
+        self.encode_dispatch(scene, View::Id, region, &mut encoder)?;
         encoder.copy_buffer_to_buffer(&scene.accum, slot, &readback, 0, PIXEL_BYTES);
         encoder.copy_buffer_to_buffer(&saved, 0, &scene.accum, slot, PIXEL_BYTES);
         self.queue.submit([encoder.finish()]);

@@ -11,20 +11,24 @@ pub mod display;
 mod frame;
 pub mod interactive;
 mod output;
+mod pipelines;
 pub mod probe;
 mod renderer;
 pub mod schedule;
 pub mod shaders;
+mod sink;
 pub mod stitch;
 mod tiles;
 
-pub use device::{old_lavapipe_warning, Gpu, ADAPTER_ENV};
+pub use device::{old_lavapipe_warning, prefer_lavapipe_width, Gpu, ADAPTER_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
     OutputPathError, PngBits,
 };
+pub use pipelines::Compilation;
 pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
+pub use sink::{ImageSink, StagedImage};
 pub use tiles::Region;
 
 /// Everything that can go wrong on the GPU side, one line each.

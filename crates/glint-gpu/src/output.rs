@@ -3,6 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
+use crate::sink::ImageSink;
 use crate::GpuError;
 
 /// A rendered image, row 0 at the top.
@@ -42,24 +43,11 @@ impl Format {
 }
 
 impl Image {
+    /// The display values as an 8-bit PNG stores them.
     pub fn to_rgb8(&self) -> image::RgbImage {
         image::RgbImage::from_fn(self.width, self.height, |x, y| {
             let p = self.display[(y * self.width + x) as usize];
-            image::Rgb([0, 1, 2].map(|c| (p[c].clamp(0.0, 1.0) * 255.0).round() as u8))
-        })
-    }
-
-    fn to_rgb16(&self) -> image::ImageBuffer<image::Rgb<u16>, Vec<u16>> {
-        image::ImageBuffer::from_fn(self.width, self.height, |x, y| {
-            let p = self.display[(y * self.width + x) as usize];
-            image::Rgb([0, 1, 2].map(|c| (p[c].clamp(0.0, 1.0) * 65535.0).round() as u16))
-        })
-    }
-
-    fn to_rgb32f(&self) -> image::Rgb32FImage {
-        image::Rgb32FImage::from_fn(self.width, self.height, |x, y| {
-            let p = self.linear[(y * self.width + x) as usize];
-            image::Rgb([p[0], p[1], p[2]])
+            image::Rgb([p[0], p[1], p[2]].map(to_u8))
         })
     }
 
@@ -86,7 +74,7 @@ impl Image {
         }
     }
 
-    /// Replaces the kernel's miss marker in a depth image by +∞.
+    /// Replaces the kernel's miss marker in a depth image (or tile) by +∞.
     pub fn with_misses_at_infinity(mut self) -> Self {
         for p in &mut self.linear {
             for c in &mut p[..3] {
@@ -97,6 +85,16 @@ impl Image {
         }
         self
     }
+}
+
+/// A display value in [0, 1] as an 8-bit PNG sample.
+pub(crate) fn to_u8(v: f32) -> u8 {
+    (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// A display value in [0, 1] as a 16-bit PNG sample.
+pub(crate) fn to_u16(v: f32) -> u16 {
+    (v.clamp(0.0, 1.0) * 65535.0).round() as u16
 }
 
 /// Bits per channel of PNG output.
@@ -121,41 +119,16 @@ pub enum Channels {
 }
 
 /// Writes `image` to `path` in the format its extension names, atomically
-/// (see [`write_atomically`]).
+/// (see [`ImageSink`]).
 pub fn write_image(image: &Image, path: &Path, bits: PngBits) -> Result<(), GpuError> {
     write_image_channels(image, path, bits, Channels::Rgb)
 }
 
 /// [`write_image`], with float formats written with `channels`.
 pub fn write_image_channels(image: &Image, path: &Path, bits: PngBits, channels: Channels) -> Result<(), GpuError> {
-    let format = Format::from_path(path)?;
-    let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    match (format, bits, channels) {
-        (Format::Png, PngBits::Eight, _) => image.to_rgb8().write_to(&mut bytes, image::ImageFormat::Png),
-        (Format::Png, PngBits::Sixteen, _) => image.to_rgb16().write_to(&mut bytes, image::ImageFormat::Png),
-        (Format::Exr, _, Channels::Rgb) => image.to_rgb32f().write_to(&mut bytes, image::ImageFormat::OpenExr),
-        (Format::Exr, _, Channels::Single(name)) => {
-            write_exr_channel(image, name, &mut bytes).map_err(|e| image::ImageError::IoError(std::io::Error::other(e)))
-        }
-        (Format::Pfm, _, channels) => write_pfm(image, channels, &mut bytes).map_err(image::ImageError::IoError),
-    }
-    .map_err(|e| fail(&e))?;
-    write_atomically(path, bytes.get_ref()).map_err(|e| fail(&e))
-}
-
-/// An EXR with one 32-bit float channel `name`, the image's first linear channel.
-fn write_exr_channel(image: &Image, name: &str, w: &mut std::io::Cursor<Vec<u8>>) -> exr::error::UnitResult {
-    use exr::prelude as x;
-    let values: Vec<f32> = image.linear.iter().map(|p| p[0]).collect();
-    let channel = x::AnyChannel::new(name, x::FlatSamples::F32(values));
-    let layer = x::Layer::new(
-        (image.width as usize, image.height as usize),
-        x::LayerAttributes::default(),
-        x::Encoding::FAST_LOSSLESS,
-        x::AnyChannels::sort(vec![channel].into()),
-    );
-    x::WritableImage::write(&x::Image::from_layer(layer)).to_buffered(w)
+    let mut sink = ImageSink::create(path, image.width, image.height, bits, channels)?;
+    sink.paste(image, 0, 0)?;
+    sink.finish()?.commit()
 }
 
 /// Checks, before any work, that an image can be written to `path`: its
@@ -164,10 +137,7 @@ fn write_exr_channel(image: &Image, name: &str, w: &mut std::io::Cursor<Vec<u8>>
 pub fn check_output_path(path: &Path) -> Result<Format, OutputPathError> {
     let format = Format::from_path(path).map_err(|e| OutputPathError::Format(e.to_string()))?;
     let shown = path.display();
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+    let dir = parent_dir(path);
     if path.is_dir() {
         return Err(OutputPathError::Unwritable(format!("{shown}: is a directory, not a file name")));
     }
@@ -175,10 +145,7 @@ pub fn check_output_path(path: &Path) -> Result<Format, OutputPathError> {
         let what = if dir.exists() { "is not a directory" } else { "does not exist" };
         return Err(OutputPathError::Unwritable(format!("{shown}: cannot write there: the directory `{}` {what}", dir.display())));
     }
-    tempfile::Builder::new()
-        .prefix(".glint-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
+    temp_beside(path)
         .map_err(|e| OutputPathError::Unwritable(format!("{shown}: cannot write in the directory `{}`: {e}", dir.display())))?;
     Ok(format)
 }
@@ -203,38 +170,30 @@ impl std::fmt::Display for OutputPathError {
 /// Writes `bytes` beside `path` under a temporary name and renames the file into
 /// place, so a failure never leaves a truncated file or harms an existing one.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".glint-").suffix(".tmp");
-    // Temporary files are private by default; the result gets ordinary permissions.
-    #[cfg(unix)]
-    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let mut tmp = builder.tempfile_in(dir)?;
+    let mut tmp = temp_beside(path)?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }
 
-/// PFM: a text header (`PF` for colour, `Pf` for greyscale), then
-/// little-endian floats, rows from the bottom up.
-fn write_pfm(image: &Image, channels: Channels, w: &mut impl Write) -> std::io::Result<()> {
-    let (magic, count) = match channels {
-        Channels::Rgb => ("PF", 3),
-        Channels::Single(_) => ("Pf", 1),
-    };
-    write!(w, "{magic}\n{} {}\n-1.0\n", image.width, image.height)?;
-    for y in (0..image.height).rev() {
-        for x in 0..image.width {
-            for c in &image.linear_at(x, y)[..count] {
-                w.write_all(&c.to_le_bytes())?;
-            }
-        }
+/// A new file beside `path` under a temporary name, removed when dropped
+/// unless persisted: the same directory, so renaming it to `path` is atomic.
+pub(crate) fn temp_beside(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".glint-").suffix(".tmp");
+    // Temporary files are private by default; the result gets ordinary permissions.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    builder.tempfile_in(parent_dir(path))
+}
+
+/// The directory `path` is in, `.` for a bare file name.
+fn parent_dir(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
     }
-    Ok(())
 }
 
 /// Reads a PFM, colour (`PF`) or greyscale (`Pf`), little- or big-endian:
@@ -293,56 +252,6 @@ pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn image(values: &[f32], width: u32) -> Image {
-        let linear: Vec<[f32; 4]> = values.iter().map(|&v| [v, v + 0.5, v + 0.25, 1.0]).collect();
-        Image { width, height: (values.len() as u32) / width, display: linear.clone(), linear }
-    }
-
-    #[test]
-    fn single_channel_pfm_is_greyscale_and_reads_back() {
-        let img = image(&[1.0, 2.0, 3.0, 4.0, 5.0, f32::INFINITY], 3);
-        let mut bytes = Vec::new();
-        write_pfm(&img, Channels::Single("Z"), &mut bytes).unwrap();
-        assert!(bytes.starts_with(b"Pf\n3 2\n-1.0\n"));
-        assert_eq!(bytes.len(), b"Pf\n3 2\n-1.0\n".len() + 6 * 4, "one float per pixel");
-        let (w, h, channels, values) = read_pfm_channels(&bytes).unwrap();
-        assert_eq!((w, h, channels), (3, 2, 1));
-        assert_eq!(values, [1.0, 2.0, 3.0, 4.0, 5.0, f32::INFINITY], "top row first");
-        let (_, _, rgb) = read_pfm(&bytes).unwrap();
-        assert_eq!(rgb[4], [5.0; 3]);
-    }
-
-    #[test]
-    fn colour_pfm_keeps_three_channels() {
-        let img = image(&[1.0, 2.0], 1);
-        let mut bytes = Vec::new();
-        write_pfm(&img, Channels::Rgb, &mut bytes).unwrap();
-        assert!(bytes.starts_with(b"PF\n1 2\n"));
-        let (_, _, rgb) = read_pfm(&bytes).unwrap();
-        assert_eq!(rgb, [[1.0, 1.5, 1.25], [2.0, 2.5, 2.25]]);
-    }
-
-    #[test]
-    fn single_channel_exr_has_one_named_channel() {
-        let img = image(&[1.0, -1.0, 7.0, f32::INFINITY], 2);
-        let mut bytes = std::io::Cursor::new(Vec::new());
-        write_exr_channel(&img, "Z", &mut bytes).unwrap();
-        use exr::prelude::traits::*;
-        let read = exr::prelude::read()
-            .no_deep_data()
-            .largest_resolution_level()
-            .all_channels()
-            .first_valid_layer()
-            .all_attributes()
-            .from_buffered(std::io::Cursor::new(bytes.into_inner()))
-            .unwrap();
-        let channels = &read.layer_data.channel_data.list;
-        assert_eq!(channels.len(), 1);
-        assert_eq!(channels[0].name.to_string(), "Z");
-        let values: Vec<f32> = channels[0].sample_data.values_as_f32().collect();
-        assert_eq!(values, [1.0, -1.0, 7.0, f32::INFINITY]);
-    }
 
     #[test]
     fn output_paths_are_checked_without_leaving_files() {

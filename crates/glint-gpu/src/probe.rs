@@ -7,9 +7,10 @@ use glint_scene::gpu_types::{
     DispatchParams, ProbeHeader, ProbeRay, View, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_CAPACITY, PROBE_SHADOW_TRACED,
     PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
 };
+use glint_scene::specialization::Specialization;
 use glint_scene::{Scene, Shape};
 
-use crate::renderer::create_pipeline;
+use crate::pipelines::create_pipeline;
 use crate::shaders::{Kernel, ShaderSource};
 use crate::{GpuError, RenderOptions, Renderer, SceneBuffers};
 
@@ -75,7 +76,9 @@ impl Prober {
             bind_group_layouts: &[Some(&renderer.scene_layout), Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = create_pipeline(device, source, Kernel::Probe, Some(&pipeline_layout))?;
+        // Compiled for every kind: for the kinds a scene holds it runs the same code
+        // as the trace kernel specialised to that scene.
+        let pipeline = create_pipeline(device, source, Kernel::Probe, Specialization::ALL, Some(&pipeline_layout))?;
         Ok(Self { pipeline, layout })
     }
 
@@ -191,6 +194,7 @@ impl TreeText<'_> {
             [Shape::Polygon { vertices }] => format!("{}-gon", vertices.len()),
             [Shape::Cone { base_radius, apex_radius, .. }] if base_radius == apex_radius => "cylinder".to_string(),
             [Shape::Cone { .. }] => "cone".to_string(),
+            [Shape::Plane { .. }] => "plane".to_string(),
             shapes => format!("mesh of {} primitives", shapes.len()),
         };
         let material = self.scene.materials.get(object.material).map_or("?", |m| m.name.as_str());

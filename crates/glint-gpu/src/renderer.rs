@@ -8,8 +8,10 @@ use glint_scene::gpu_types::{
     DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
     STAT_REFRACT, STAT_SHADOW, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
 };
+use glint_scene::specialization::Specialization;
 use wgpu::util::DeviceExt;
 
+use crate::pipelines::{Compilation, Pipelines};
 use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::shaders::{Kernel, ShaderSource};
 use crate::tiles::Region;
@@ -105,19 +107,17 @@ pub(crate) const STAT_BYTES: u64 = STAT_SLOTS * STAT_COUNT as u64 * 4;
 /// resolved pixel of each image read back.
 const PIXEL_BYTES: u64 = 16;
 
-/// The compiled kernels on one device. Cheap to clone the device and queue
-/// handles into it, so the viewer can share eframe's device.
+/// The kernels on one device. Cheap to clone the device and queue handles
+/// into it, so the viewer can share eframe's device.
 pub struct Renderer {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
-    /// The full Whitted render.
-    trace: wgpu::ComputePipeline,
-    /// The primary ray alone, for the debug views, AOVs and picking: a kernel
-    /// without the ray tree compiles to far leaner code.
-    pub(crate) primary: wgpu::ComputePipeline,
-    /// The bind group layout `trace` and `primary` share.
+    /// The trace kernel (the full Whitted render), the primary kernel (the
+    /// primary ray alone, for the debug views, AOVs and picking: without the
+    /// ray tree it compiles to far leaner code) and the resolve kernel.
+    pub(crate) pipelines: Pipelines,
+    /// The bind group layout the trace and primary kernels share.
     pub(crate) scene_layout: wgpu::BindGroupLayout,
-    pub(crate) resolve: wgpu::ComputePipeline,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
     /// Band sizes of batch renders, kept from frame to frame so the next one
@@ -145,6 +145,8 @@ pub struct SceneBuffers {
     pub(crate) lights: wgpu::Buffer,
     /// Bytes of geometry, BVH, materials and lights on the device.
     pub scene_bytes: u64,
+    /// The primitive kinds the kernels that render it are compiled for.
+    pub specialization: Specialization,
 }
 
 impl Renderer {
@@ -155,9 +157,7 @@ impl Renderer {
             bind_group_layouts: &[Some(&scene_layout)],
             immediate_size: 0,
         });
-        let trace = create_pipeline(&device, source, Kernel::Trace, Some(&pipeline_layout))?;
-        let primary = create_pipeline(&device, source, Kernel::Primary, Some(&pipeline_layout))?;
-        let resolve = create_pipeline(&device, source, Kernel::Resolve, None)?;
+        let pipelines = Pipelines::new(&device, source, pipeline_layout)?;
         let lost = Arc::new(Mutex::new(None));
         let record = Arc::clone(&lost);
         device.set_device_lost_callback(move |reason, message| {
@@ -166,10 +166,8 @@ impl Renderer {
         Ok(Self {
             device,
             queue,
-            trace,
-            primary,
+            pipelines,
             scene_layout,
-            resolve,
             lost,
             bands: Mutex::new(BandScheduler::new(BATCH_TARGET)),
             max_tile_pixels: None,
@@ -186,6 +184,17 @@ impl Renderer {
 
     pub fn device(&self) -> &wgpu::Device {
         &self.device
+    }
+
+    /// Creates the pipelines of `kernels` for `scene` now (those not made
+    /// yet), so a shader the driver rejects fails before any work is done.
+    pub fn create_pipelines(&self, scene: &SceneBuffers, kernels: &[Kernel]) -> Result<(), GpuError> {
+        self.pipelines.create(kernels, scene.specialization)
+    }
+
+    /// Every pipeline created so far, with the time each took.
+    pub fn compilations(&self) -> Vec<Compilation> {
+        self.pipelines.compilations()
     }
 
     /// Uploads `scene` for rendering at `width` × `height`, checking the device's
@@ -277,6 +286,7 @@ impl Renderer {
             materials,
             lights,
             scene_bytes,
+            specialization: Specialization::of(&scene.prims),
         })
     }
 
@@ -292,8 +302,7 @@ impl Renderer {
     }
 
     /// Renders the pixels of `region` alone, exactly as they are in a render
-    /// of the whole image, tile by tile: each tile is traced, resolved and read
-    /// back in turn, so the host holds the region's image and one tile.
+    /// of the whole image, and returns them as one image (see [`Self::render_tiles`]).
     pub fn render_region(
         &self,
         scene: &SceneBuffers,
@@ -301,31 +310,43 @@ impl Renderer {
         options: &RenderOptions,
         progress: &mut dyn FnMut(u64, u64),
     ) -> Result<(Image, RayStats), GpuError> {
-        if region.is_empty() || !Region::whole(scene.width, scene.height).contains(&region) {
-            return Err(GpuError::Region(format!(
-                "the region {region} (x0 y0 x1 y1) is empty or not inside the {}x{} image",
-                scene.width, scene.height
-            )));
-        }
+        check_region(scene, region)?;
+        let pixels = region.pixels() as usize;
+        let (width, height) = (region.width(), region.height());
+        let mut image = Image { width, height, display: vec![[0.0; 4]; pixels], linear: vec![[0.0; 4]; pixels] };
+        let stats = self.render_tiles(scene, region, options, progress, &mut |tile, part| {
+            image.paste(&part, tile.x0 - region.x0, tile.y0 - region.y0);
+            Ok(())
+        })?;
+        Ok((image, stats))
+    }
+
+    /// Renders the pixels of `region` tile by tile, each exactly as it is in a
+    /// render of the whole image: each tile is traced, resolved, read back and
+    /// handed to `tile(place in the image, pixels)` in reading order, so the
+    /// host holds one tile and whatever `tile` keeps. An error from `tile`
+    /// ends the render.
+    pub fn render_tiles(
+        &self,
+        scene: &SceneBuffers,
+        region: Region,
+        options: &RenderOptions,
+        progress: &mut dyn FnMut(u64, u64),
+        tile: &mut dyn FnMut(Region, Image) -> Result<(), GpuError>,
+    ) -> Result<RayStats, GpuError> {
+        check_region(scene, region)?;
+        self.create_pipelines(scene, &[kernel_for(options.view), Kernel::Resolve])?;
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = (|| {
-            let pixels = region.pixels() as usize;
-            let mut image = Image {
-                width: region.width(),
-                height: region.height(),
-                display: vec![[0.0; 4]; pixels],
-                linear: vec![[0.0; 4]; pixels],
-            };
             let mut stats = RayStats::default();
             let total = u64::from(options.spp) * region.pixels();
             let mut done = 0;
-            for tile in region.tiles(scene.accum_pixels) {
-                stats = stats + self.trace_tile(scene, tile, options, &mut |pixels| progress(done + pixels, total))?;
-                done += u64::from(options.spp) * tile.pixels();
-                let part = self.resolve_buffer(&scene.accum, tile.width(), tile.height(), options)?;
-                image.paste(&part, tile.x0 - region.x0, tile.y0 - region.y0);
+            for place in region.tiles(scene.accum_pixels) {
+                stats = stats + self.trace_tile(scene, place, options, &mut |pixels| progress(done + pixels, total))?;
+                done += u64::from(options.spp) * place.pixels();
+                tile(place, self.resolve_buffer(&scene.accum, place.width(), place.height(), options)?)?;
             }
-            Ok((image, stats))
+            Ok(stats)
         })();
         let scoped = pollster::block_on(scope.pop());
         if let Some(reason) = self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone() {
@@ -396,7 +417,7 @@ impl Renderer {
             };
             let mut encoder = self.device.create_command_encoder(&Default::default());
             encoder.clear_buffer(&scene.stats, 0, None);
-            self.encode_band(scene, tile, sample_index, options, y..y + band, &mut encoder);
+            self.encode_band(scene, tile, sample_index, options, y..y + band, &mut encoder)?;
             encoder.copy_buffer_to_buffer(&scene.stats, 0, &stats_readback, 0, STAT_BYTES);
             let start = Instant::now();
             self.queue.submit([encoder.finish()]);
@@ -421,7 +442,7 @@ impl Renderer {
         options: &RenderOptions,
         rows: std::ops::Range<u32>,
         encoder: &mut wgpu::CommandEncoder,
-    ) {
+    ) -> Result<(), GpuError> {
         let region = DispatchParams {
             origin: [tile.x0, rows.start],
             end: [tile.x1, rows.end],
@@ -434,19 +455,27 @@ impl Renderer {
             pixel_filter: options.filter as u32,
             ..Zeroable::zeroed()
         };
-        self.encode_dispatch(scene, options.view, region, encoder);
+        self.encode_dispatch(scene, options.view, region, encoder)
     }
 
     /// Writes `region` with `view` and records the dispatch of the kernel that
     /// view needs over it.
-    pub(crate) fn encode_dispatch(&self, scene: &SceneBuffers, view: View, region: DispatchParams, encoder: &mut wgpu::CommandEncoder) {
+    pub(crate) fn encode_dispatch(
+        &self,
+        scene: &SceneBuffers,
+        view: View,
+        region: DispatchParams,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), GpuError> {
+        let pipeline = self.pipelines.get(kernel_for(view), scene.specialization)?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(if view.is_primary_only() { &self.primary } else { &self.trace });
+        pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &scene.scene_bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
         pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        Ok(())
     }
 
     /// Turns the accumulated samples of an accumulation that holds the whole
@@ -469,6 +498,7 @@ impl Renderer {
     }
 
     fn resolve_buffer(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
+        let resolve = self.pipelines.get(Kernel::Resolve, Specialization::ALL)?;
         let pixels = width * height;
         let bytes = u64::from(pixels) * PIXEL_BYTES;
         let params = ResolveParams {
@@ -495,7 +525,7 @@ impl Renderer {
         let (display, linear) = (output("display"), output("linear"));
         let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("resolve"),
-            layout: &self.resolve.get_bind_group_layout(0),
+            layout: &resolve.get_bind_group_layout(0),
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: samples.as_entire_binding() },
@@ -508,7 +538,7 @@ impl Renderer {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.resolve);
+            pass.set_pipeline(&resolve);
             pass.set_bind_group(0, &bind, &[]);
             dispatch_linear(&mut pass, pixels.div_ceil(64), self.device.limits().max_compute_workgroups_per_dimension);
         }
@@ -547,6 +577,26 @@ impl Renderer {
     }
 }
 
+/// Refuses a region that is empty or reaches outside the scene's image.
+fn check_region(scene: &SceneBuffers, region: Region) -> Result<(), GpuError> {
+    if region.is_empty() || !Region::whole(scene.width, scene.height).contains(&region) {
+        return Err(GpuError::Region(format!(
+            "the region {region} (x0 y0 x1 y1) is empty or not inside the {}x{} image",
+            scene.width, scene.height
+        )));
+    }
+    Ok(())
+}
+
+/// The kernel that traces `view`.
+fn kernel_for(view: View) -> Kernel {
+    if view.is_primary_only() {
+        Kernel::Primary
+    } else {
+        Kernel::Trace
+    }
+}
+
 /// A 1D dispatch of `groups` workgroups, folded into rows when it exceeds the
 /// per-dimension limit; the kernel rebuilds the linear index from both.
 fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) {
@@ -579,52 +629,6 @@ fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         buffer(9, wgpu::BufferBindingType::Uniform),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
-}
-
-/// Creates compute pipelines for `entries` of the kernel made of `files`, inside
-/// an error scope, so a shader that the driver rejects fails here, loudly,
-/// instead of later reading back zeros. With `layout` `None` each pipeline
-/// derives its own bind group layout.
-pub(crate) fn create_pipeline(
-    device: &wgpu::Device,
-    source: &ShaderSource,
-    kernel: Kernel,
-    layout: Option<&wgpu::PipelineLayout>,
-) -> Result<wgpu::ComputePipeline, GpuError> {
-    let entry = kernel.entry_point();
-    let composed = source.compose(kernel)?;
-    composed.validate()?;
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let descriptor = wgpu::ShaderModuleDescriptor {
-        label: Some(entry),
-        source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
-    };
-    let module = match source {
-        // SAFETY: the embedded kernels are Glint's own. Every loop in them ends:
-        // BVH traversal pushes at most one node per level of a tree whose depth
-        // the builder bounds by the stack size, and every other loop runs over a
-        // count the host wrote. Every index stays in its array: node and
-        // primitive indices come from the same builder and packer. So wgpu's
-        // injected loop counters and index clamps, which cost the software
-        // rasteriser ~5% of traversal time, are not needed. Kernels read from a
-        // directory (the viewer's hot reload, possibly mid-edit) keep them.
-        ShaderSource::Embedded => unsafe {
-            device.create_shader_module_trusted(descriptor, wgpu::ShaderRuntimeChecks::unchecked())
-        },
-        ShaderSource::Dir(_) => device.create_shader_module(descriptor),
-    };
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry),
-        layout,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(GpuError::Shader(format!("{entry}: {}", one_line(&e))));
-    }
-    Ok(pipeline)
 }
 
 /// An error and its causes on one line (wgpu's own display spans several).

@@ -2,7 +2,8 @@
 //! point and its own bindings), `shaders/lib/` the shared code. A file states
 //! what it uses in a line `// import: a b c` (files of `lib/`, without the
 //! extension); a kernel is the generated prelude of constants shared with the
-//! host (`gpu_types::wgsl_prelude`) followed by the files its imports reach,
+//! host (`gpu_types::wgsl_prelude`) and the flags of the scene it is
+//! specialised to (`Specialization`), followed by the files its imports reach,
 //! each once, every file after the files it imports. So a kernel's file list
 //! is derived from the code, and holds only what the kernel uses. Errors are
 //! mapped back to the file and line they came from.
@@ -11,6 +12,8 @@
 //! disk instead (the viewer's hot reload).
 
 use std::path::{Path, PathBuf};
+
+use glint_scene::specialization::Specialization;
 
 use crate::GpuError;
 
@@ -36,6 +39,7 @@ sources![
     "lib/ray_frame.wgsl",
     "lib/sphere.wgsl",
     "lib/triangle.wgsl",
+    "lib/plane.wgsl",
     "lib/polygon.wgsl",
     "lib/cone.wgsl",
     "lib/primitive.wgsl",
@@ -43,6 +47,7 @@ sources![
     "lib/reflect.wgsl",
     "lib/refract.wgsl",
     "lib/shadow.wgsl",
+    "lib/checker.wgsl",
     "lib/shade.wgsl",
     "lib/dispatch.wgsl",
     "lib/ray_tree.wgsl",
@@ -51,7 +56,7 @@ sources![
 ];
 
 /// The kernels, each one file of `shaders/kernels/` with one entry point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Kernel {
     /// The full Whitted render.
     Trace,
@@ -76,6 +81,13 @@ impl Kernel {
             Kernel::Present => "kernels/present.wgsl",
             Kernel::Probe => "kernels/probe.wgsl",
         }
+    }
+
+    /// Whether the kernel intersects primitives, so that its code depends on
+    /// the `Specialization` it is composed for (tests/wgsl.rs checks this
+    /// against the files it is made of).
+    pub fn is_specialised(self) -> bool {
+        matches!(self, Kernel::Trace | Kernel::Primary | Kernel::Probe)
     }
 
     pub fn entry_point(self) -> &'static str {
@@ -115,7 +127,7 @@ pub struct Composed {
 }
 
 /// How errors name the generated prelude.
-const PRELUDE: &str = "the generated prelude (gpu_types.rs)";
+const PRELUDE: &str = "the generated prelude (gpu_types.rs, specialization.rs)";
 
 impl Composed {
     /// Turns a line of the composed source into "file:line".
@@ -165,11 +177,13 @@ impl ShaderSource {
         }
     }
 
-    /// The kernel's source: the prelude, then every file its imports reach.
-    pub fn compose(&self, kernel: Kernel) -> Result<Composed, GpuError> {
+    /// The kernel's source for scenes of `specialization`: the prelude, then
+    /// every file its imports reach.
+    pub fn compose(&self, kernel: Kernel, specialization: Specialization) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
         self.visit(kernel.file(), &mut Vec::new(), &mut order)?;
         let mut source = glint_scene::gpu_types::wgsl_prelude();
+        source.push_str(&specialization.wgsl());
         let mut starts = vec![(PRELUDE.to_string(), 1)];
         for (name, text) in order {
             starts.push((name, source.lines().count() + 1));

@@ -8,8 +8,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::output::{write_atomically, write_image_channels, Channels, Format, Image, PngBits};
-use crate::{read_pfm_channels, GpuError, Region};
+use crate::output::{write_atomically, Channels, Format, Image, PngBits};
+use crate::{read_pfm_channels, GpuError, ImageSink, Region};
 
 /// Where a part belongs: in an image of `width` × `height`, at `region`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -136,16 +136,18 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(), GpuError> {
         }
     }
     check_coverage(&parts, width, height)?;
-    let pixels = width as usize * height as usize;
-    let mut whole = Image { width, height, display: vec![[0.0; 4]; pixels], linear: vec![[0.0; 4]; pixels] };
-    for part in &parts {
-        whole.paste(&part.image, part.placement.region.x0, part.placement.region.y0);
-    }
     let (bits, channels) = match encoding {
         Encoding::Png(bits) => (bits, Channels::Rgb),
         Encoding::Float(_, channels) => (PngBits::Eight, channels),
     };
-    write_image_channels(&whole, output, bits, channels)
+    let mut sink = ImageSink::create(output, width, height, bits, channels)?;
+    // In reading order a PNG's rows are encoded as each strip of parts completes them.
+    let mut parts = parts;
+    parts.sort_by_key(|p| (p.placement.region.y0, p.placement.region.x0));
+    for part in &parts {
+        sink.paste(&part.image, part.placement.region.x0, part.placement.region.y0)?;
+    }
+    sink.finish()?.commit()
 }
 
 /// Checks that the parts' regions cover the `width` × `height` image exactly

@@ -35,6 +35,11 @@ pub(crate) enum Geom {
         /// Radius slope (r1 − r0)/h.
         k: f64,
     },
+    Plane {
+        /// Unit normal.
+        normal: DVec3,
+        point: DVec3,
+    },
     /// A degenerate shape (zero radius, zero area, zero height): never hit.
     Empty,
 }
@@ -87,6 +92,16 @@ impl Geom {
                 }
                 Geom::Cone { base, axis: (apex - base) / h, h, r0, k: (r1 - r0) / h }
             }
+            Shape::Plane { point, normal } => Geom::Plane { normal: d3(*normal).normalize(), point: d3(*point) },
+        }
+    }
+
+    /// The unit normal of a flat primitive (a polygon or a plane), whose
+    /// checker counts tiles in the plane's own coordinates.
+    pub(crate) fn flat_normal(&self) -> Option<DVec3> {
+        match self {
+            Geom::Polygon { normal, .. } | Geom::Plane { normal, .. } => Some(*normal),
+            _ => None,
         }
     }
 
@@ -124,14 +139,7 @@ impl Geom {
                 in_range(t).then_some(t)
             }
             Geom::Polygon { normal, origin, vertices } => {
-                let denom = normal.dot(d);
-                if denom == 0.0 {
-                    return None;
-                }
-                let t = normal.dot(*origin - o) / denom;
-                if !in_range(t) {
-                    return None;
-                }
+                let t = plane_hit(*normal, *origin, o, d).filter(|&t| in_range(t))?;
                 let frame = RayFrame::new(o, d);
                 let sheared: Vec<DVec3> = vertices.iter().map(|p| frame.point(*p)).collect();
                 even_odd(&sheared).then_some(t)
@@ -169,6 +177,7 @@ impl Geom {
                 };
                 roots.into_iter().find(|&t| accept(t))
             }
+            Geom::Plane { normal, point } => plane_hit(*normal, *point, o, d).filter(|&t| in_range(t)),
             Geom::Empty => None,
         }
     }
@@ -192,7 +201,7 @@ impl Geom {
                 };
                 (ng, ns)
             }
-            Geom::Polygon { normal, .. } => (*normal, *normal),
+            Geom::Polygon { normal, .. } | Geom::Plane { normal, .. } => (*normal, *normal),
             Geom::Cone { base, axis, k, .. } => {
                 let q = p - *base;
                 let radial = (q - q.dot(*axis) * *axis).normalize();
@@ -202,6 +211,13 @@ impl Geom {
             Geom::Empty => (DVec3::Z, DVec3::Z),
         }
     }
+}
+
+/// Where o + t·d meets the plane through `point` with normal `n`:
+/// t = n·(point − o) / n·d, none for a ray parallel to it.
+fn plane_hit(n: DVec3, point: DVec3, o: DVec3, d: DVec3) -> Option<f64> {
+    let denom = n.dot(d);
+    (denom != 0.0).then(|| n.dot(point - o) / denom)
 }
 
 fn order(a: f64, b: f64) -> (f64, f64) {
@@ -326,5 +342,17 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn planes_are_hit_from_both_sides_and_missed_by_parallel_rays() {
+        let floor = Geom::new(&Shape::Plane { point: Vec3::new(5.0, -1.0, 2.0), normal: Vec3::Y });
+        let hit = |o: DVec3, d: DVec3, t_max: f64| floor.intersect(o, d, 0.0, t_max);
+        assert_eq!(hit(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y, f64::INFINITY), Some(2.0));
+        assert_eq!(hit(DVec3::new(3.0, -4.0, 0.0), DVec3::Y, f64::INFINITY), Some(3.0), "from below");
+        assert_eq!(hit(DVec3::new(0.0, 1.0, 0.0), DVec3::X, f64::INFINITY), None, "parallel");
+        assert_eq!(hit(DVec3::new(0.0, 1.0, 0.0), DVec3::Y, f64::INFINITY), None, "behind the ray");
+        assert_eq!(hit(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y, 1.5), None, "beyond t_max");
+        assert_eq!(floor.normals(DVec3::ZERO), (DVec3::Y, DVec3::Y));
     }
 }

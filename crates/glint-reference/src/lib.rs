@@ -10,12 +10,16 @@
 //!   distance t with depth cue s_o = DepthCue::scale(t) (s_o = 1 without one); a miss
 //!   gives the background, not depth-cued.
 //!
-//! See the crate's functions for the details of each term.
+//! See the crate's functions for the details of each term. `Tracer::ray_tree`
+//! records one pixel's tree ray by ray and term by term (`ray_tree.rs`), the
+//! twin of the GPU probe.
 
 #![forbid(unsafe_code)]
 
+mod checker;
 mod geometry;
 mod random;
+mod ray_tree;
 #[cfg(test)]
 mod tests;
 
@@ -24,6 +28,8 @@ use glint_scene::{LightKind, Material, Scene, ShadowMode, SpecularModel};
 
 use geometry::Geom;
 pub use random::random_scene;
+use ray_tree::{Observer, Pending, Signature};
+pub use ray_tree::{Occluder, RayKind, RefRay, RefTree, ShadowRay};
 
 /// Ray counts, as the GPU's statistics buffer counts them.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -97,7 +103,7 @@ pub struct Hit {
     /// Index into `scene.objects`.
     pub object: u32,
     /// Index of the primitive in object order: all shapes of object 0, then of
-    /// object 1, … (the order of `glint_scene::gpu_types::primitive_bounds`).
+    /// object 1, …
     pub primitive: u32,
     pub point: DVec3,
     /// Unit geometric normal N_g, turned to face the incoming ray.
@@ -109,6 +115,8 @@ pub struct Hit {
     pub backface: bool,
     /// N_s was replaced by N_g because it faced away from the ray.
     pub shading_fallback: bool,
+    /// The point is on an odd tile of its material's checker (`checker.rs`).
+    pub odd_tile: bool,
 }
 
 /// Offset for rays leaving a surface at `p`: 1e-4·max(1, max|p_i|).
@@ -169,31 +177,18 @@ struct LightF {
     attenuation: glint_scene::Attenuation,
 }
 
-/// Per-ray-tree bookkeeping: counts, and optionally a log of every discrete
-/// decision (which primitive each ray hit, shadowed or not, total internal
-/// reflection, which children were spawned) used to find pixels whose result
-/// could flip under a tiny perturbation.
-struct Recorder {
+/// Per-ray-tree bookkeeping: counts, and whoever is told each step
+/// (`ray_tree.rs`: the decisions' signature, the recorded tree, or no one).
+struct Recorder<'o> {
     stats: RayStats,
-    log: Option<Vec<u64>>,
+    observer: &'o mut dyn Observer,
 }
 
-impl Recorder {
-    fn new(log: bool) -> Self {
-        Self { stats: RayStats::default(), log: log.then(Vec::new) }
-    }
-    fn note(&mut self, tag: u64, value: u64) {
-        if let Some(log) = &mut self.log {
-            log.push(tag << 40 | value);
-        }
+impl<'o> Recorder<'o> {
+    fn new(observer: &'o mut dyn Observer) -> Self {
+        Self { stats: RayStats::default(), observer }
     }
 }
-
-const TAG_RAY: u64 = 1;
-const TAG_SURFACE: u64 = 2;
-const TAG_LIGHT: u64 = 3;
-const TAG_TINT: u64 = 4;
-const TAG_CHILDREN: u64 = 5;
 
 /// The scene converted to f64 once; all queries go through it.
 pub struct Tracer<'a> {
@@ -258,7 +253,8 @@ impl<'a> Tracer<'a> {
         if shading_fallback {
             shading = geometric;
         }
-        Some(Hit { t, object: prim.object, primitive: i as u32, point, geometric, shading, backface, shading_fallback })
+        let odd_tile = checker::odd_tile(self.material(prim), &prim.geom, point);
+        Some(Hit { t, object: prim.object, primitive: i as u32, point, geometric, shading, backface, shading_fallback, odd_tile })
     }
 
     /// How much of a light reaches along the shadow ray (origin, dir) up to `t_max`:
@@ -267,25 +263,22 @@ impl<'a> Tracer<'a> {
     fn transmittance(&self, origin: DVec3, dir: DVec3, t_max: f64, rec: &mut Recorder) -> DVec3 {
         let tinted = self.scene.render.shadow_mode == ShadowMode::Tinted;
         let mut s = DVec3::ONE;
+        // On past an opaque occluder too: the observer is told every one.
         for (i, p) in self.prims.iter().enumerate() {
-            if p.geom.intersect(origin, dir, 0.0, t_max).is_none() {
-                continue;
-            }
+            let Some(t) = p.geom.intersect(origin, dir, 0.0, t_max) else { continue };
             let m = self.material(p);
-            if tinted && m.is_transmissive() {
-                s *= d3(m.transmit);
-                rec.note(TAG_TINT, i as u64);
-            } else {
-                return DVec3::ZERO;
-            }
+            let tints = tinted && m.is_transmissive();
+            rec.observer.occluder(i as u32, Occluder { object: p.object, t, tints });
+            s = if tints { s * d3(m.transmit) } else { DVec3::ZERO };
         }
         s
     }
 
     /// The local illumination at a hit seen from direction `-d`.
     fn local(&self, hit: &Hit, m: &Material, d: DVec3, rec: &mut Recorder) -> DVec3 {
-        let od = d3(m.color);
+        let od = checker::diffuse_colour(m, hit.odd_tile);
         let mut color = f64::from(m.ambient) * d3(self.scene.ambient) * od;
+        rec.observer.ambient(color);
         let v = -d;
         let (ns, ng, p) = (hit.shading, hit.geometric, hit.point);
         for (li, light) in self.lights.iter().enumerate() {
@@ -299,18 +292,31 @@ impl<'a> Tracer<'a> {
             };
             let n_dot_l = ns.dot(l);
             if n_dot_l <= 0.0 || ng.dot(l) <= 0.0 {
-                rec.note(TAG_LIGHT, (li as u64) << 4);
+                rec.observer.light_away(li);
                 continue;
             }
-            let s = if self.scene.render.shadows {
+            let traced = self.scene.render.shadows;
+            let s = if traced {
                 rec.stats.shadow += 1;
                 let eps = ray_epsilon(p);
                 self.transmittance(p + ng * eps, l, distance - eps, rec)
             } else {
                 DVec3::ONE
             };
-            rec.note(TAG_LIGHT, (li as u64) << 4 | 1 | u64::from(s == DVec3::ZERO) << 1);
+            let reach = att * s * light.radiance;
+            let shadow = |diffuse, specular| ShadowRay {
+                light: li,
+                n_dot_l,
+                distance,
+                traced,
+                occluders: Vec::new(),
+                transmittance: s,
+                reach,
+                diffuse,
+                specular,
+            };
             if s == DVec3::ZERO {
+                rec.observer.light(p, l, shadow(DVec3::ZERO, DVec3::ZERO));
                 continue;
             }
             let h = (l + v).normalize();
@@ -329,15 +335,17 @@ impl<'a> Tracer<'a> {
                 }
                 None => f64::from(m.specular) * d3(m.specular_color.unwrap_or(glam::Vec3::ONE)) * lobe,
             };
-            let diffuse = f64::from(m.diffuse) * od * n_dot_l;
-            color += att * s * light.radiance * (diffuse + spec);
+            let (diffuse, specular) = (reach * f64::from(m.diffuse) * od * n_dot_l, reach * spec);
+            rec.observer.light(p, l, shadow(diffuse, specular));
+            color += diffuse + specular;
         }
         color
     }
 
-    /// Colour of the ray (origin, unit dir) at tree depth `depth` carrying `weight`.
-    /// Returns the colour and the hit.
-    fn trace_rec(&self, origin: DVec3, dir: DVec3, depth: u32, weight: DVec3, rec: &mut Recorder) -> (DVec3, Option<Hit>) {
+    /// Colour of the ray (origin, unit dir), traced as `ray` says. Returns the
+    /// colour and the hit.
+    fn trace_rec(&self, origin: DVec3, dir: DVec3, ray: Pending, rec: &mut Recorder) -> (DVec3, Option<Hit>) {
+        let (depth, weight) = (ray.depth, ray.weight);
         let hit = self.nearest_hit(origin, dir, 0.0, f64::INFINITY);
         if depth == 1 {
             if hit.is_some() {
@@ -346,11 +354,10 @@ impl<'a> Tracer<'a> {
                 rec.stats.eye_miss += 1;
             }
         }
-        rec.note(TAG_RAY, hit.map_or(0, |h| u64::from(h.primitive) + 1));
+        let id = rec.observer.ray(&ray, origin, dir, hit.as_ref());
         let Some(hit) = hit else {
             return (d3(self.scene.background), None);
         };
-        rec.note(TAG_SURFACE, u64::from(hit.backface) | u64::from(hit.shading_fallback) << 1);
         let prim = &self.prims[hit.primitive as usize];
         let m = self.material(prim);
         let local = self.local(&hit, m, dir, rec);
@@ -358,6 +365,7 @@ impl<'a> Tracer<'a> {
             Some(dc) => (dc.scale(hit.t), d3(dc.color)),
             None => (1.0, DVec3::ZERO),
         };
+        rec.observer.cue(so);
         let mut inner = local;
         let r = &self.scene.render;
         if depth < r.max_depth {
@@ -394,31 +402,35 @@ impl<'a> Tracer<'a> {
             let wt = weight * so * kt;
             let spawn = |w: DVec3| w.max_element() > f64::from(r.cutoff) && w.max_element() > 0.0;
             let (do_r, do_t) = (spawn(wr), spawn(wt));
-            rec.note(TAG_CHILDREN, u64::from(tir) | u64::from(do_r) << 1 | u64::from(do_t) << 2);
+            rec.observer.branch(eta, tir, do_r, do_t);
+            let child = |kind, weight| Pending { kind, parent: Some(id), depth: depth + 1, weight };
             if do_r {
                 rec.stats.reflect += 1;
-                let (c, _) = self.trace_rec(hit.point + hit.geometric * eps, reflect(dir, n), depth + 1, wr, rec);
+                let (c, _) = self.trace_rec(hit.point + hit.geometric * eps, reflect(dir, n), child(RayKind::Reflect, wr), rec);
                 inner += kr * c;
             }
             if do_t {
                 rec.stats.refract += 1;
                 let t_dir = refracted.expect("k_t > 0 only when refraction is possible");
-                let (c, _) = self.trace_rec(hit.point - hit.geometric * eps, t_dir, depth + 1, wt, rec);
+                let (c, _) = self.trace_rec(hit.point - hit.geometric * eps, t_dir, child(RayKind::Refract, wt), rec);
                 inner += kt * c;
             }
         }
         (so * inner + (1.0 - so) * cue, Some(hit))
     }
 
-    fn trace_recorded(&self, origin: DVec3, dir: DVec3, rec: &mut Recorder) -> (DVec3, Option<Hit>) {
-        self.trace_rec(origin, dir.normalize(), 1, DVec3::ONE, rec)
+    /// An eye ray's colour and hit, each step told to `observer`; `dir` is normalised.
+    fn trace_observed(&self, origin: DVec3, dir: DVec3, observer: &mut dyn Observer) -> (DVec3, Option<Hit>, RayStats) {
+        let eye = Pending { kind: RayKind::Eye, parent: None, depth: 1, weight: DVec3::ONE };
+        let mut rec = Recorder::new(observer);
+        let (c, hit) = self.trace_rec(origin, dir.normalize(), eye, &mut rec);
+        (c, hit, rec.stats)
     }
 
     /// Colour of a ray treated as an eye ray (depth 1, weight 1); `dir` is normalised.
     pub fn trace(&self, origin: DVec3, dir: DVec3, stats: &mut RayStats) -> [f64; 3] {
-        let mut rec = Recorder::new(false);
-        let (c, _) = self.trace_recorded(origin, dir, &mut rec);
-        *stats += rec.stats;
+        let (c, _, ray_stats) = self.trace_observed(origin, dir, &mut ());
+        *stats += ray_stats;
         arr(c)
     }
 
@@ -430,9 +442,8 @@ impl<'a> Tracer<'a> {
     /// Pixel (i, j) of a `width` × `height` render: the ray through its centre.
     pub fn pixel(&self, width: u32, height: u32, i: u32, j: u32) -> PixelSample {
         let (o, d) = self.eye_ray(width, height, f64::from(i) + 0.5, f64::from(j) + 0.5);
-        let mut rec = Recorder::new(false);
-        let (c, hit) = self.trace_recorded(o, d, &mut rec);
-        PixelSample { rgb: arr(c), depth: hit.map_or(f64::INFINITY, |h| h.t), object: hit.map(|h| h.object), stats: rec.stats }
+        let (c, hit, stats) = self.trace_observed(o, d, &mut ());
+        PixelSample { rgb: arr(c), depth: hit.map_or(f64::INFINITY, |h| h.t), object: hit.map(|h| h.object), stats }
     }
 
     pub fn render(&self, width: u32, height: u32) -> RefImage {
@@ -459,16 +470,14 @@ impl<'a> Tracer<'a> {
         img
     }
 
-    /// The discrete decisions of the ray tree through image position (x, y):
-    /// primitive hit by each ray, backface and normal-fallback flags, per light
-    /// facing/shadowed and tinting occluders, total internal reflection, spawned
-    /// children. Two positions with equal signatures are shaded by the same
-    /// continuous formula.
+    /// The discrete decisions of the ray tree through image position (x, y)
+    /// (`ray_tree::Signature`). Two positions with equal signatures are shaded
+    /// by the same continuous formula.
     pub fn signature(&self, width: u32, height: u32, x: f64, y: f64) -> Vec<u64> {
         let (o, d) = self.eye_ray(width, height, x, y);
-        let mut rec = Recorder::new(true);
-        self.trace_recorded(o, d, &mut rec);
-        rec.log.unwrap_or_default()
+        let mut signature = Signature::default();
+        self.trace_observed(o, d, &mut signature);
+        signature.0
     }
 
     /// Whether pixel (i, j) is away from every discontinuity: the ray trees through

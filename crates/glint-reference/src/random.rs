@@ -1,11 +1,12 @@
 //! Random test scenes for differential testing: a few well separated objects of
-//! every primitive kind above a floor, 1–3 lights, random materials and settings.
+//! every primitive kind above a floor (a square or an infinite plane), 1–3
+//! lights, random materials (some checkered) and settings.
 
 use std::f32::consts::{PI, TAU};
 
 use glam::Vec3;
 use glint_scene::{
-    Attenuation, Camera, DepthCue, Light, LightKind, Material, Object, Projection, RenderSettings, Scene,
+    Attenuation, Camera, Checker, DepthCue, Light, LightKind, Material, Object, Projection, RenderSettings, Scene,
     ShadowMode, Shape, SpecularModel,
 };
 
@@ -70,7 +71,7 @@ impl Rng {
 /// 2.2 − 2·0.9 = 0.4 apart.
 const SPACING: f32 = 2.2;
 pub(crate) const OBJECT_RADIUS: f32 = 0.9;
-/// The floor plane, at least 0.3 below the lowest object point.
+/// The floor, at least 0.3 below the lowest object point.
 pub(crate) const FLOOR_Y: f32 = -1.3;
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -91,36 +92,49 @@ fn frame(n: Vec3) -> (Vec3, Vec3) {
     (e1, n.cross(e1))
 }
 
-/// A small random scene (64 × 48): a floor polygon and 4–8 objects, each within
+/// A small random scene (64 × 48): a floor (a square polygon or an infinite
+/// plane, often checkered) and 4–8 objects, each within
 /// `OBJECT_RADIUS` of the centre of its own cell of a 3 × 3 grid (so no two
 /// surfaces touch), covering spheres, triangles (some smooth), convex and concave
 /// polygons, cones, cylinders and sometimes a tetrahedron mesh; 1–3 lights (point
 /// and directional, some attenuated, sometimes an extra switched-off one);
-/// plain, mirror, glass and metallic materials; random camera, background,
+/// plain, mirror, glass and metallic materials, some with a solid checker;
+/// random camera, background,
 /// depth cue, shadow mode and render settings. The same seed gives the same scene.
 pub fn random_scene(seed: u64) -> Scene {
     let mut rng = Rng::new(seed ^ 0x6A09_E667_F3BC_C908);
     let mut materials = Vec::new();
     let mut objects = Vec::new();
 
-    // The floor: matte, sometimes a dim mirror; vertex order (and so its normal) random.
+    // The floor: matte, sometimes a dim mirror, often checkered; a square or an
+    // infinite plane, its normal (a polygon's vertex order) up or down at random.
     let mut floor = plain_material(&mut rng, "floor");
     floor.specular *= 0.3;
     if rng.chance(0.2) {
         floor.reflect = Vec3::splat(rng.range(0.2, 0.5));
     }
-    materials.push(floor);
-    let s = 9.0;
-    let mut corners = vec![
-        Vec3::new(-s, FLOOR_Y, -s),
-        Vec3::new(s, FLOOR_Y, -s),
-        Vec3::new(s, FLOOR_Y, s),
-        Vec3::new(-s, FLOOR_Y, s),
-    ];
     if rng.chance(0.5) {
-        corners.reverse();
+        floor.checker = Some(Checker { color: rng.color(0.15, 1.0), size: rng.range(0.7, 2.5) });
     }
-    objects.push(Object { material: 0, shapes: vec![Shape::Polygon { vertices: corners }] });
+    materials.push(floor);
+    let down = rng.chance(0.5);
+    let floor = if rng.chance(0.4) {
+        let point = Vec3::new(rng.range(-2.0, 2.0), FLOOR_Y, rng.range(-2.0, 2.0));
+        Shape::Plane { point, normal: if down { Vec3::NEG_Y } else { Vec3::Y } }
+    } else {
+        let s = 9.0;
+        let mut corners = vec![
+            Vec3::new(-s, FLOOR_Y, -s),
+            Vec3::new(s, FLOOR_Y, -s),
+            Vec3::new(s, FLOOR_Y, s),
+            Vec3::new(-s, FLOOR_Y, s),
+        ];
+        if down {
+            corners.reverse();
+        }
+        Shape::Polygon { vertices: corners }
+    };
+    objects.push(Object { material: 0, shapes: vec![floor] });
 
     let mut cells: Vec<(i32, i32)> = (-1..=1).flat_map(|x| (-1..=1).map(move |z| (x, z))).collect();
     rng.shuffle(&mut cells);
@@ -149,12 +163,15 @@ pub fn random_scene(seed: u64) -> Scene {
         let c = Vec3::new(cx as f32 * SPACING, rng.range(-0.1, 0.1), cz as f32 * SPACING);
         let shapes = shape(&mut rng, kind, c);
         let closed = matches!(kind, Kind::Sphere | Kind::Tetrahedron);
-        let m = match rng.unit() {
+        let mut m = match rng.unit() {
             x if x < 0.45 => plain_material(&mut rng, "plain"),
             x if x < 0.65 => mirror_material(&mut rng),
             x if x < (if closed { 0.9 } else { 0.8 }) => glass_material(&mut rng),
             _ => metallic_material(&mut rng),
         };
+        if rng.chance(0.2) {
+            m.checker = Some(Checker { color: rng.color(0.15, 1.0), size: rng.range(0.2, 0.6) });
+        }
         materials.push(m);
         objects.push(Object { material: materials.len() - 1, shapes });
     }
@@ -211,6 +228,7 @@ pub fn random_scene(seed: u64) -> Scene {
         objects,
         depth_cue,
         render,
+        animation: None,
         warnings: Vec::new(),
     }
 }
@@ -320,6 +338,7 @@ fn plain_material(rng: &mut Rng, name: &str) -> Material {
         transmit: Vec3::ZERO,
         ior: 1.0,
         fresnel: false,
+        checker: None,
     }
 }
 

@@ -39,6 +39,7 @@ fn scene(camera: Camera) -> Scene {
         objects: Vec::new(),
         depth_cue: None,
         render: RenderSettings { cutoff: 0.0, ..RenderSettings::default() },
+        animation: None,
         warnings: Vec::new(),
     }
 }
@@ -578,7 +579,7 @@ fn ray_counts_glass_sphere() {
 #[test]
 fn random_scenes_are_deterministic_varied_and_separated() {
     let mut kinds = [0usize; 4];
-    let mut features = [0usize; 8];
+    let mut features = [0usize; 11];
     for seed in 0..40 {
         let s = random_scene(seed);
         assert_eq!(s, random_scene(seed));
@@ -591,7 +592,7 @@ fn random_scenes_are_deterministic_varied_and_separated() {
         let balls: Vec<(DVec3, f64)> = s.objects[1..]
             .iter()
             .map(|o| {
-                let (lo, hi) = o.shapes.iter().map(Shape::bounds).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (l, h)| (a.min(l), b.max(h)));
+                let (lo, hi) = o.shapes.iter().filter_map(Shape::bounds).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (l, h)| (a.min(l), b.max(h)));
                 assert!(lo.y > FLOOR_Y + 0.25, "seed {seed}: object reaches down to {}", lo.y);
                 let c = dv((lo + hi) / 2.0);
                 let r = o.shapes.iter().flat_map(shape_points).map(|p| (p - c).length()).fold(0.0, f64::max);
@@ -611,6 +612,10 @@ fn random_scenes_are_deterministic_varied_and_separated() {
                     Shape::Triangle { .. } => 1,
                     Shape::Polygon { .. } => 2,
                     Shape::Cone { .. } => 3,
+                    Shape::Plane { .. } => {
+                        features[8] += 1;
+                        continue;
+                    }
                 }] += 1;
                 if let Shape::Triangle { normals: Some(_), .. } = shape {
                     features[0] += 1;
@@ -625,6 +630,8 @@ fn random_scenes_are_deterministic_varied_and_separated() {
         features[5] += usize::from(s.materials.iter().any(|m| m.is_transmissive()));
         features[6] += usize::from(s.materials.iter().any(|m| m.reflect.max_element() > 0.0));
         features[7] += usize::from(matches!(s.camera.projection, Projection::Orthographic { .. }));
+        features[9] += usize::from(s.materials[0].checker.is_some());
+        features[10] += usize::from(s.materials[1..].iter().any(|m| m.checker.is_some()));
     }
     assert!(kinds.iter().all(|&k| k >= 20), "{kinds:?}");
     assert!(features.iter().all(|&f| f >= 3), "{features:?}");
@@ -651,6 +658,7 @@ fn shape_points(s: &Shape) -> Vec<DVec3> {
                 })
                 .collect()
         }
+        Shape::Plane { .. } => unreachable!("only the floor is a plane"),
     }
 }
 

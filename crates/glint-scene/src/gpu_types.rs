@@ -7,7 +7,7 @@ use glam::Vec3;
 use crate::bvh::MAX_DEPTH as BVH_MAX_DEPTH;
 use crate::gpu_bvh::{GpuBvh, GpuGrid, GpuNode};
 use crate::scene::MAX_DEPTH_LIMIT;
-use crate::shape::polygon_normal;
+use crate::shape::{plane_axes, polygon_normal};
 use crate::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
 /// Declares the numbers the host and the kernels share. Each becomes a Rust
@@ -52,6 +52,7 @@ shared_constants! {
     PRIM_TRIANGLE: u32 = 1;
     PRIM_POLYGON: u32 = 2;
     PRIM_CONE: u32 = 3;
+    PRIM_PLANE: u32 = 4;
 
     LIGHT_POINT: u32 = 0;
     LIGHT_DIRECTIONAL: u32 = 1;
@@ -63,6 +64,7 @@ shared_constants! {
     MATERIAL_BLINN: u32 = 1;
     MATERIAL_METALLIC: u32 = 2;
     MATERIAL_FRESNEL: u32 = 4;
+    MATERIAL_CHECKER: u32 = 8;
 
     FLAG_SHADOWS: u32 = 1;
     FLAG_TINTED_SHADOWS: u32 = 2;
@@ -211,6 +213,12 @@ pub struct SceneUniforms {
     pub flags: u32,
     /// The BVH record traversal starts from (`GpuScene::bvh_root`).
     pub bvh_root: u32,
+    /// The infinite planes, `prims[plane_first .. plane_first + plane_count]`,
+    /// which every ray tests besides the BVH ([`plane_range`]).
+    pub plane_first: u32,
+    pub plane_count: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
 }
 
 /// What one dispatch traces: written before each dispatch, and nothing else is.
@@ -261,6 +269,9 @@ pub struct GpuMaterial {
     pub shininess: f32,
     pub f0: [f32; 3],
     pub ior: f32,
+    /// O_d of the checker's odd tiles, with `MATERIAL_CHECKER`.
+    pub checker: [f32; 3],
+    pub checker_size: f32,
     pub flags: u32,
     pub _pad0: u32,
     pub _pad1: u32,
@@ -270,7 +281,9 @@ pub struct GpuMaterial {
 /// One primitive, 64 bytes; what `a`, `b`, `c` hold depends on the kind:
 /// sphere a = (centre, radius); triangle a, b, c = vertices, `first` = index of
 /// its three vertex normals when `count` = 3; polygon a = (unit normal, n·v0),
-/// vertices[first .. first + count]; cone a = (base, base radius), b = (apex, apex radius).
+/// b and c = the plane's axes u and v (`plane_axes`, for the checker),
+/// vertices[first .. first + count]; cone a = (base, base radius), b = (apex,
+/// apex radius); infinite plane a = (unit normal, n·p), b and c = u and v.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct GpuPrim {
@@ -282,6 +295,13 @@ pub struct GpuPrim {
     pub object: u32,
     pub first: u32,
     pub count: u32,
+}
+
+impl GpuPrim {
+    /// The `PRIM_` kind (WGSL `prim_kind`).
+    pub fn kind(&self) -> u32 {
+        self.kind_material & 0xff
+    }
 }
 
 /// One ray of a probed tree, as shaders/kernels/probe.wgsl records it.
@@ -374,25 +394,41 @@ fn v4(v: Vec3, w: f32) -> [f32; 4] {
     [v.x, v.y, v.z, w]
 }
 
-/// All primitive bounds in object order, the input of the BVH builder.
+/// The bounds of the primitives the BVH holds, in object order: every
+/// primitive but the infinite planes, which have none. The input of the BVH
+/// builder, whose `order` indexes this list.
 pub fn primitive_bounds(scene: &Scene) -> Vec<(Vec3, Vec3)> {
-    scene.objects.iter().flat_map(|o| o.shapes.iter().map(Shape::bounds)).collect()
+    scene.objects.iter().flat_map(|o| o.shapes.iter().filter_map(Shape::bounds)).collect()
 }
 
-/// Packs the scene's primitives in `order` (the BVH's leaf order, `Bvh::order`)
-/// with the BVH in the kernel's layout.
+/// Where the infinite planes are packed, (first, count): after the BVH's
+/// primitives, in object order.
+pub fn plane_range(scene: &Scene) -> (u32, u32) {
+    let planes = scene.objects.iter().flat_map(|o| &o.shapes).filter(|s| !s.is_bounded()).count();
+    ((scene.primitive_count() - planes) as u32, planes as u32)
+}
+
+fn axes(normal: Vec3) -> ([f32; 4], [f32; 4]) {
+    let [u, v] = plane_axes(normal.as_dvec3());
+    (v4(u.as_vec3(), 0.0), v4(v.as_vec3(), 0.0))
+}
+
+/// Packs the scene's bounded primitives in `order` (the BVH's leaf order,
+/// `Bvh::order`), then its infinite planes ([`plane_range`]), with the BVH in
+/// the kernel's layout.
 pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
-    let flat: Vec<(u32, &Shape, usize)> = scene
+    let (bounded, planes): (Vec<(u32, &Shape, usize)>, Vec<_>) = scene
         .objects
         .iter()
         .enumerate()
         .flat_map(|(id, o)| o.shapes.iter().map(move |s| (id as u32, s, o.material)))
-        .collect();
+        .partition(|(_, shape, _)| shape.is_bounded());
     let mut points = Vec::new();
     let mut prims: Vec<GpuPrim> = order
         .iter()
-        .map(|&i| {
-            let (object, shape, material) = flat[i as usize];
+        .map(|&i| bounded[i as usize])
+        .chain(planes)
+        .map(|(object, shape, material)| {
             let mut p = GpuPrim { object, kind_material: (material as u32) << 8, ..Zeroable::zeroed() };
             match shape {
                 Shape::Sphere { center, radius } => {
@@ -412,6 +448,7 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
                     p.kind_material |= PRIM_POLYGON;
                     let n = polygon_normal(vertices).unwrap_or(Vec3::Z);
                     p.a = v4(n, n.dot(vertices[0]));
+                    (p.b, p.c) = axes(n);
                     p.first = points.len() as u32;
                     p.count = vertices.len() as u32;
                     points.extend(vertices.iter().map(|v| v4(*v, 0.0)));
@@ -420,6 +457,11 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
                     p.kind_material |= PRIM_CONE;
                     p.a = v4(*base, *base_radius);
                     p.b = v4(*apex, *apex_radius);
+                }
+                Shape::Plane { point, normal } => {
+                    p.kind_material |= PRIM_PLANE;
+                    p.a = v4(*normal, normal.dot(*point));
+                    (p.b, p.c) = axes(*normal);
                 }
             }
             p
@@ -454,6 +496,9 @@ pub fn pack_material(m: &crate::Material) -> GpuMaterial {
     if m.fresnel {
         flags |= MATERIAL_FRESNEL;
     }
+    if m.checker.is_some() {
+        flags |= MATERIAL_CHECKER;
+    }
     GpuMaterial {
         color: m.color.into(),
         ka: m.ambient,
@@ -465,6 +510,8 @@ pub fn pack_material(m: &crate::Material) -> GpuMaterial {
         shininess: m.shininess,
         f0: m.metallic_f0.unwrap_or(Vec3::ZERO).into(),
         ior: m.ior,
+        checker: m.checker.map_or(Vec3::ZERO, |c| c.color).into(),
+        checker_size: m.checker.map_or(0.0, |c| c.size),
         flags,
         _pad0: 0,
         _pad1: 0,
@@ -515,6 +562,7 @@ pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, 
         }
         None => ([0.0; 3], [0.0; 4]),
     };
+    let (plane_first, plane_count) = plane_range(scene);
     SceneUniforms {
         camera: GpuCamera {
             eye: scene.camera.eye.into(),
@@ -537,5 +585,67 @@ pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, 
         cutoff: r.cutoff,
         flags,
         bvh_root,
+        plane_first,
+        plane_count,
+        _pad0: 0,
+        _pad1: 0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SCENE: &str = r#"
+[image]
+width = 8
+height = 8
+[camera]
+eye = [0, 1, 5]
+look_at = [0, 0, 0]
+fov = 40
+[material.board]
+color = 1
+checker = { color = [1, 1, 0], size = 0.5 }
+[[object]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+[[object]]
+type = "plane"
+point = [0, -1, 0]
+normal = [0, 1, 0]
+material = "board"
+[[object]]
+type = "plane"
+point = [0, 0, -4]
+normal = [0, 0, 1]
+size = [2, 2]
+[[object]]
+type = "plane"
+point = [0, 0, -9]
+normal = [0, 0, -1]
+"#;
+
+    #[test]
+    fn infinite_planes_stay_out_of_the_bvh_and_are_packed_after_it() {
+        let scene = crate::toml_scene::parse(SCENE, std::path::Path::new("s.toml")).unwrap();
+        let bounds = primitive_bounds(&scene);
+        assert_eq!(bounds.len(), 2, "the sphere and the rectangle (a polygon)");
+        let bvh = crate::bvh::Bvh::build(&bounds);
+        let packed = pack(&scene, &bvh.order, bvh.gpu().unwrap());
+        assert_eq!(plane_range(&scene), (2, 2));
+        let uniforms = scene_uniforms(&scene, 8, 8, packed.light_count, packed.bvh_root);
+        assert_eq!((uniforms.plane_first, uniforms.plane_count), (2, 2));
+        let planes = &packed.prims[2..4];
+        assert_eq!(planes.iter().map(|p| (p.kind_material & 0xff, p.object)).collect::<Vec<_>>(), [(PRIM_PLANE, 1), (PRIM_PLANE, 3)]);
+        assert_eq!(planes[0].kind_material >> 8, 1, "the board's material");
+        assert_eq!((planes[0].a, planes[0].b, planes[0].c), ([0.0, 1.0, 0.0, -1.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]));
+        assert_eq!((planes[1].a, planes[1].b, planes[1].c), ([0.0, 0.0, -1.0, 9.0], [1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]));
+        let rectangle = packed.prims[..2].iter().find(|p| p.kind_material & 0xff == PRIM_POLYGON).unwrap();
+        assert_eq!((rectangle.b, rectangle.c), ([1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]), "a polygon carries its plane's axes");
+        let board = pack_material(&scene.materials[1]);
+        assert_eq!((board.flags & MATERIAL_CHECKER, board.checker, board.checker_size), (MATERIAL_CHECKER, [1.0, 1.0, 0.0], 0.5));
+        assert_eq!(pack_material(&scene.materials[0]).flags & MATERIAL_CHECKER, 0);
     }
 }

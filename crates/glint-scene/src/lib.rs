@@ -2,6 +2,7 @@
 //! OBJ), camera math, the BVH builder and the packing of a scene into the plain
 //! arrays the WGSL kernels read.
 
+pub mod animation;
 pub mod bvh;
 mod camera;
 mod error;
@@ -15,6 +16,7 @@ pub mod obj;
 mod scene;
 mod shape;
 pub mod spd;
+pub mod specialization;
 pub mod suggest;
 #[cfg(test)]
 mod test_rng;
@@ -23,12 +25,13 @@ pub mod toml_scene;
 pub mod toml_write;
 pub mod validate;
 
+pub use animation::Animation;
 pub use camera::{Basis, Camera, Projection, Ray};
 pub use error::{LoadError, Location};
 pub use light::{Attenuation, Light, LightKind};
-pub use material::{Material, SpecularModel};
+pub use material::{Checker, Material, SpecularModel};
 pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
-pub use shape::{Shape, ShapeProblem};
+pub use shape::{plane_axes, Shape, ShapeProblem};
 
 use std::path::Path;
 
@@ -68,13 +71,6 @@ pub(crate) fn read_text(path: &Path) -> Result<String, ReadError> {
 /// direction overflows 32-bit floats (its basis would be NaN).
 pub(crate) fn view_overflows(camera: &Camera) -> bool {
     !(camera.eye - camera.look_at).is_finite()
-}
-
-/// Whether the shape's bounding box is finite: a shape whose extent overflows
-/// 32-bit floats cannot be placed in the BVH or intersected.
-pub(crate) fn bounds_are_finite(shape: &Shape) -> bool {
-    let (lo, hi) = shape.bounds();
-    lo.is_finite() && hi.is_finite()
 }
 
 /// `v` scaled to unit length, or `None` for a zero vector. Computed in f64:

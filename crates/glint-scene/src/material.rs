@@ -36,6 +36,21 @@ pub struct Material {
     pub ior: f32,
     /// Weight reflection and refraction by Schlick's Fresnel term.
     pub fresnel: bool,
+    /// A checkerboard of O_d: `color` and the checker's colour in alternate tiles.
+    pub checker: Option<Checker>,
+}
+
+/// Whitted's checkerboard, on any material: at each hit, O_d is the
+/// material's `color` on even tiles and `color` here on odd ones. Tiles have
+/// side `size` and a corner at the world origin: squares in the plane's own
+/// coordinates on planes and polygons, cubes (a solid checker) on other
+/// shapes (docs/scene-format.md, `checker`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Checker {
+    /// O_d of the odd tiles.
+    pub color: Vec3,
+    /// The side of a tile, > 0.
+    pub size: f32,
 }
 
 impl Default for Material {
@@ -54,6 +69,7 @@ impl Default for Material {
             transmit: Vec3::ZERO,
             ior: 1.0,
             fresnel: false,
+            checker: None,
         }
     }
 }

@@ -1,6 +1,6 @@
 use glam::Vec3;
 
-use crate::{Camera, Light, LoadError, Material, Shape};
+use crate::{Animation, Camera, Light, LoadError, Material, Shape};
 
 /// A renderable scene, independent of the file format it came from.
 #[derive(Debug, Clone, PartialEq)]
@@ -16,6 +16,10 @@ pub struct Scene {
     pub objects: Vec<Object>,
     pub depth_cue: Option<DepthCue>,
     pub render: RenderSettings,
+    /// How the camera and lights move from frame to frame; `None` for a still.
+    /// A loaded scene's camera and lights are as the file writes them, until
+    /// `Scene::set_frame` poses them at a frame.
+    pub animation: Option<Animation>,
     /// Problems that did not stop loading (e.g. a degenerate polygon that was
     /// skipped), each naming file and line.
     pub warnings: Vec<LoadError>,

@@ -42,6 +42,10 @@ const TABLES: &[(&[&str], &str)] = &[
     (&["material", "NAME"], "[material.NAME]"),
     (&["object"], "[[object]]"),
     (&["include"], "[[include]]"),
+    (&["animation"], "[animation]"),
+    (&["animation", "camera"], "[[animation.camera]]"),
+    (&["animation", "light"], "[[animation.light]]"),
+    (&["animation", "orbit"], "[animation.orbit]"),
 ];
 
 /// Options of `glint render` that are sometimes written into a scene.
@@ -326,7 +330,7 @@ fn structure(doc: &DeTable<'_>, found: &mut Vec<(usize, u8, String)>) {
                 0,
                 format!("[{name}] is a single table: write [[{name}]] (an array of tables) for each {name}"),
             )),
-            ("image" | "camera" | "ambient" | "render" | "depth_cue", DeValue::Array(_)) => found.push((
+            ("image" | "camera" | "ambient" | "render" | "depth_cue" | "animation", DeValue::Array(_)) => found.push((
                 at,
                 0,
                 format!("[[{name}]] is an array of tables, but a scene has one {name}: write [{name}]"),
@@ -336,6 +340,18 @@ fn structure(doc: &DeTable<'_>, found: &mut Vec<(usize, u8, String)>) {
                 0,
                 "[[material]] is an array of tables: write [material.NAME] for each material, as in [material.red]".into(),
             )),
+            ("animation", DeValue::Table(animation)) => {
+                for (key, value) in animation {
+                    let name = key.get_ref().as_ref();
+                    if matches!(name, "camera" | "light") && matches!(value.get_ref(), DeValue::Table(_)) {
+                        found.push((
+                            key.span().start,
+                            0,
+                            format!("[animation.{name}] is a single table: write [[animation.{name}]] (an array of tables) for each key"),
+                        ));
+                    }
+                }
+            }
             ("material", DeValue::Table(materials)) => {
                 for (key, value) in materials {
                     if !matches!(value.get_ref(), DeValue::Table(_)) {
@@ -409,11 +425,16 @@ fn backticked(keys: &[&str]) -> String {
 
 fn unknown_message(key: &str, value: &Spanned<DeValue<'_>>, table: &DeTable<'_>, path: &[&str], schema: &Schema) -> String {
     let fields = (schema.fields)(path).unwrap_or(&[]);
-    // Which other table has this key (for an object, a material first).
-    let material_first = path.first() == Some(&"object");
+    // Which other table has this key (for an object, a material first; in
+    // the animation, another of its tables first).
+    let preferred = |p: &[&str]| match path.first() {
+        Some(&"object") => p[0] == "material",
+        Some(&"animation") => p[0] == "animation",
+        _ => true,
+    };
     let home = TABLES
         .iter()
-        .filter(|(p, _)| !material_first || p[0] == "material")
+        .filter(|(p, _)| preferred(p))
         .chain(TABLES)
         .find(|(p, _)| (schema.fields)(p).is_some_and(|f| f.contains(&key)))
         .map(|(_, shown)| *shown);
@@ -442,6 +463,11 @@ fn unknown_message(key: &str, value: &Spanned<DeValue<'_>>, table: &DeTable<'_>,
         },
         ("light", Some(kind @ ("point" | "directional"))) => (format!("a {kind} light"), fields.to_vec()),
         ("material", _) if path.len() == 2 => (format!("[material.{}]", path[1]), fields.to_vec()),
+        ("material", _) if path.len() == 3 => (format!("the {} of [material.{}]", path[2], path[1]), fields.to_vec()),
+        ("animation", _) if path.len() == 2 => {
+            let shown = TABLES.iter().find(|(p, _)| *p == path).map_or("[animation]", |(_, shown)| *shown);
+            (shown.to_string(), fields.to_vec())
+        }
         (name, _) => (table_form(name), fields.to_vec()),
     };
     if let Some(near) = suggest::nearest(key, candidates.iter().copied()) {
@@ -451,7 +477,8 @@ fn unknown_message(key: &str, value: &Spanned<DeValue<'_>>, table: &DeTable<'_>,
         let option = key.replace('_', "-");
         return format!("unknown key `{key}` in {place}: `{key}` is a command-line option (glint render --{option} …), not a scene key");
     }
-    if let Some(home) = home.filter(|h| *h != table_form(path[0])) {
+    let own = if path[0] == "animation" { place.clone() } else { table_form(path[0]) };
+    if let Some(home) = home.filter(|h| *h != own) {
         if path[0] == "object" && home == "[material.NAME]" {
             return format!(
                 "unknown key `{key}` in {place}: `{key}` belongs to a material; define it in [material.NAME] and give the object `material = \"NAME\"`"

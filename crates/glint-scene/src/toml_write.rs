@@ -1,11 +1,13 @@
 //! Writes a [`Scene`] as Glint TOML that [`crate::toml_scene`] reads back.
 //!
 //! A scene loaded from TOML (without meshes or includes) reads back equal to
-//! itself. Otherwise the written file renders the same scene, with two
+//! itself; a plane with a `size` is written as the polygon it is stored as.
+//! Otherwise the written file renders the same scene, with two
 //! differences in its structure: every shape becomes one `[[object]]` (a mesh's
 //! triangles are written one by one, so object ids count them), and materials
 //! are renamed when their names would not keep their order, since the loader
 //! orders named materials by name. Paths to OBJ and NFF files are not kept.
+//! An `[animation]` is written with every key in full and placed by `frame`.
 //!
 //! Numbers are written in the shortest form that reads back to the same `f32`.
 
@@ -13,7 +15,8 @@ use std::fmt::Write;
 
 use glam::Vec3;
 
-use crate::{Attenuation, LightKind, Material, Projection, Scene, ShadowMode, Shape, SpecularModel};
+use crate::animation::{CameraTrack, Interpolation};
+use crate::{Animation, Attenuation, Camera, LightKind, Material, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
 /// A value that the TOML format cannot hold.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -60,7 +63,7 @@ impl Writer {
 
         self.line("");
         self.line("[camera]");
-        let c = &s.camera;
+        let c = &written_camera(s);
         match c.projection {
             Projection::Perspective { fov_y_degrees } => {
                 self.line("type = \"perspective\"");
@@ -151,6 +154,58 @@ impl Writer {
                 }
             }
         }
+        if let Some(a) = &s.animation {
+            self.animation(a)?;
+        }
+        Ok(())
+    }
+
+    fn animation(&mut self, a: &Animation) -> Result<(), WriteError> {
+        self.line("");
+        self.line("[animation]");
+        self.line(format!("frames = {}", a.frames));
+        self.num("fps", a.fps, "the animation's fps")?;
+        let keyed = matches!(a.camera, Some(CameraTrack::Keys(_))) || !a.lights.is_empty();
+        if keyed {
+            let interpolation = match a.interpolation {
+                Interpolation::Linear => "linear",
+                Interpolation::Smooth => "smooth",
+            };
+            self.line(format!("interpolation = \"{interpolation}\""));
+        }
+        match &a.camera {
+            None => {}
+            Some(CameraTrack::Orbit(o)) => {
+                let what = "the orbit";
+                let (center, axis, turns) = (vector(o.center, what)?, vector(o.axis, what)?, number(o.turns, what)?);
+                self.line(format!("orbit = {{ center = {center}, axis = {axis}, turns = {turns} }}"));
+            }
+            Some(CameraTrack::Keys(keys)) => {
+                for (i, k) in keys.iter().enumerate() {
+                    let what = format!("camera key {}", i + 1);
+                    self.line("");
+                    self.line("[[animation.camera]]");
+                    self.num("frame", k.frame, &what)?;
+                    self.vec("eye", k.camera.eye, &what)?;
+                    self.vec("look_at", k.camera.look_at, &what)?;
+                    self.vec("up", k.camera.up, &what)?;
+                    match k.camera.projection {
+                        Projection::Perspective { fov_y_degrees } => self.num("fov", fov_y_degrees, &what)?,
+                        Projection::Orthographic { height } => self.num("height", height, &what)?,
+                    }
+                }
+            }
+        }
+        for track in &a.lights {
+            for k in &track.keys {
+                let what = format!("light {}'s key", track.light);
+                self.line("");
+                self.line("[[animation.light]]");
+                self.line(format!("light = {}", track.light));
+                self.num("frame", k.frame, &what)?;
+                self.vec("position", k.position, &what)?;
+            }
+        }
         Ok(())
     }
 
@@ -178,6 +233,10 @@ impl Writer {
         self.vec("transmit", m.transmit, &what("transmit"))?;
         self.num("ior", m.ior, &what("ior"))?;
         self.line(format!("fresnel = {}", m.fresnel));
+        if let Some(c) = m.checker {
+            let (color, size) = (vector(c.color, &what("checker colour"))?, number(c.size, &what("checker size"))?);
+            self.line(format!("checker = {{ color = {color}, size = {size} }}"));
+        }
         Ok(())
     }
 
@@ -206,8 +265,28 @@ impl Writer {
                 self.vec("apex", *apex, what)?;
                 self.num("apex_radius", *apex_radius, what)?;
             }
+            Shape::Plane { point, normal } => {
+                self.line("type = \"plane\"");
+                self.vec("point", *point, what)?;
+                self.vec("normal", *normal, what)?;
+            }
         }
         Ok(())
+    }
+}
+
+/// The `[camera]` to write. An orbit turns its own start camera, which the
+/// reader takes from `[camera]`; camera keys need a `[camera]` of their
+/// projection. Otherwise the scene's camera, as it was posed or edited.
+fn written_camera(s: &Scene) -> Camera {
+    let kind = std::mem::discriminant::<Projection>;
+    match s.animation.as_ref().and_then(|a| a.camera.as_ref()) {
+        Some(CameraTrack::Orbit(o)) => o.start,
+        Some(CameraTrack::Keys(keys)) => match keys.first() {
+            Some(k) if kind(&k.camera.projection) != kind(&s.camera.projection) => Camera { projection: k.camera.projection, ..s.camera },
+            _ => s.camera,
+        },
+        None => s.camera,
     }
 }
 
@@ -359,6 +438,7 @@ color = [0.75, 0.55, 0.15]
 specular_color = [1, 0.9, 0.5]
 metallic = [1.0, 0.78, 0.34]
 model = "phong"
+checker = { color = [0.2, 0.1, 0.05], size = 0.75 }
 
 [material."odd \"name\""]
 color = 0.3
@@ -392,12 +472,72 @@ base = [-3.0, 0, -2.0]
 base_radius = 0.6
 apex = [-3.0, 1.6, -2.0]
 apex_radius = 0.0
+
+[[object]]
+type = "plane"
+point = [0, -1, 0.5]
+normal = [1, 2, 3]
+material = "gold"
+
+[[object]]
+type = "plane"
+point = [0, 2, -5]
+normal = [0, 0.6, 0.8]
+size = [4, 2.5]
 "#;
 
     #[test]
     fn every_feature_round_trips() {
         let scene = parse(EVERYTHING, Path::new("everything.toml")).unwrap();
         assert_eq!(round_trip(&scene), scene);
+    }
+
+    const ORBIT: &str = "\n[animation]\nframes = 36\nfps = 30\norbit = { center = [0, 1, 0], axis = [0, 1, 0.5], turns = -0.5 }\n";
+
+    const KEYS: &str = r#"
+[animation]
+frames = 20
+interpolation = "smooth"
+
+[[animation.camera]]
+time = 0.125
+height = 5
+
+[[animation.camera]]
+frame = 7.5
+eye = [4, 2, 6]
+up = [0.1, 1, 0]
+
+[[animation.light]]
+light = 2
+frame = 0
+position = [1, 2, 3]
+
+[[animation.light]]
+light = 0
+frame = 19
+position = [-1, 2, 3]
+
+[[animation.light]]
+light = 2
+frame = 10
+position = [3, 2, 1]
+"#;
+
+    #[test]
+    fn animations_round_trip_also_when_posed() {
+        for animation in [ORBIT, KEYS] {
+            let scene = parse(&format!("{EVERYTHING}{animation}"), Path::new("animated.toml")).unwrap();
+            assert_eq!(round_trip(&scene), scene);
+            // A scene posed at a frame is written with the animation it moves by.
+            let mut posed = scene.clone();
+            posed.set_frame(13);
+            let back = round_trip(&posed);
+            assert_eq!(back.animation, scene.animation);
+            let mut again = back.clone();
+            again.set_frame(13);
+            assert_eq!((again.camera, &again.lights), (posed.camera, &posed.lights));
+        }
     }
 
     #[test]

@@ -20,6 +20,10 @@ pub enum Invalid {
     TooManyMaterials(usize),
     #[error("object {object}: a polygon needs at least 3 vertices, not {count}")]
     PolygonVertices { object: usize, count: usize },
+    #[error("object {object}: a plane's normal must be a unit vector")]
+    PlaneNormal { object: usize },
+    #[error("material {material}: a checker's tiles must have a positive, finite size")]
+    CheckerSize { material: usize },
     #[error("the scene has {count} {what}; the kernels index at most {max}")]
     TooMany { what: &'static str, count: usize, max: usize },
     #[error("a maximum ray depth of {0} does not fit the kernel's ray stack (1 to {max})", max = RAY_STACK - 1)]
@@ -36,6 +40,11 @@ impl Scene {
         }
         if self.materials.len() > MAX_MATERIALS {
             return Err(Invalid::TooManyMaterials(self.materials.len()));
+        }
+        for (material, m) in self.materials.iter().enumerate() {
+            if m.checker.is_some_and(|c| !(c.size > 0.0 && c.size.is_finite())) {
+                return Err(Invalid::CheckerSize { material });
+            }
         }
         let object_limit = u32::MAX as usize;
         if self.objects.len() > object_limit {
@@ -54,6 +63,10 @@ impl Scene {
                         return Err(Invalid::PolygonVertices { object, count: vertices.len() });
                     }
                     Shape::Polygon { vertices } => points += vertices.len(),
+                    // The kernels shade with it as it is.
+                    Shape::Plane { normal, .. } if !normal.is_finite() || (normal.length() - 1.0).abs() >= 1e-3 => {
+                        return Err(Invalid::PlaneNormal { object });
+                    }
                     Shape::Triangle { normals: Some(_), .. } => points += 3,
                     _ => {}
                 }
@@ -102,6 +115,7 @@ mod tests {
             objects,
             depth_cue: None,
             render: RenderSettings::default(),
+            animation: None,
             warnings: Vec::new(),
         }
     }
@@ -120,6 +134,12 @@ mod tests {
         );
         let two_vertices = Object { material: 0, shapes: vec![Shape::Polygon { vertices: vec![Vec3::ZERO, Vec3::X] }] };
         assert_eq!(scene(vec![two_vertices], 1).validate(), Err(Invalid::PolygonVertices { object: 0, count: 2 }));
+        let plane = |normal| Object { material: 0, shapes: vec![Shape::Plane { point: Vec3::ZERO, normal }] };
+        assert_eq!(scene(vec![plane(Vec3::Y), sphere(0)], 1).validate(), Ok(()));
+        assert_eq!(scene(vec![plane(Vec3::ZERO)], 1).validate(), Err(Invalid::PlaneNormal { object: 0 }));
+        let mut checkered = scene(vec![sphere(0)], 2);
+        checkered.materials[1].checker = Some(crate::Checker { color: Vec3::ONE, size: 0.0 });
+        assert_eq!(checkered.validate(), Err(Invalid::CheckerSize { material: 1 }));
         for depth in [0, RAY_STACK] {
             let mut s = scene(vec![sphere(0)], 1);
             s.render.max_depth = depth;

@@ -131,10 +131,13 @@ pub(crate) struct LoadedScene {
     pub radius: f32,
     /// The field of view to return to from an orthographic camera.
     pub fov: f32,
+    /// The frame of the scene's animation shown.
+    pub frame: u32,
 }
 
 impl LoadedScene {
-    fn new(scene: Scene, generation: u64) -> Self {
+    fn new(mut scene: Scene, generation: u64) -> Self {
+        scene.set_frame(0);
         let bounds = glint_scene::gpu_types::primitive_bounds(&scene)
             .into_iter()
             .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
@@ -143,7 +146,7 @@ impl LoadedScene {
             Projection::Perspective { fov_y_degrees } => fov_y_degrees,
             Projection::Orthographic { .. } => 40.0,
         };
-        Self { file_camera: scene.camera, scene, generation, bounds, radius: radius.max(1e-3), fov }
+        Self { file_camera: scene.camera, scene, generation, bounds, radius: radius.max(1e-3), fov, frame: 0 }
     }
 
     /// About the distance from the eye to the far side of the scene.
@@ -158,7 +161,8 @@ impl LoadedScene {
     }
 
     pub fn reset_camera(&mut self) {
-        self.scene.camera = self.file_camera;
+        // An animated camera returns to where the frame shown puts it.
+        self.scene.camera = self.scene.animation.as_ref().and_then(|a| a.camera_at(self.frame)).unwrap_or(self.file_camera);
     }
 
     pub fn frame_all(&mut self) {

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
-use glint_gpu::shaders::ShaderSource;
+use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
 use glint_scene::Scene;
 
@@ -54,6 +54,8 @@ impl Canvas {
         let prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
         // Progressive rendering needs the whole image on the device at once.
         prepared.buffers.check_whole_image()?;
+        // Here, off the UI thread: the shaded image, the debug views and picking.
+        kernels.renderer.create_pipelines(&prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
         Ok(Self { kernels, prepared, target, scene_generation, counter })
@@ -138,12 +140,12 @@ impl Accumulation {
     }
 
     /// Adds the next band of rows of the next sample, up to `target` samples.
-    pub fn step(&mut self, canvas: &Canvas, options: &RenderOptions, target: u32) -> Step {
+    pub fn step(&mut self, canvas: &Canvas, options: &RenderOptions, target: u32) -> Result<Step, GpuError> {
         if self.samples >= target {
-            return Step::Done;
+            return Ok(Step::Done);
         }
         if self.in_flight.load(Ordering::Acquire) >= MAX_IN_FLIGHT {
-            return Step::Waiting;
+            return Ok(Step::Waiting);
         }
         let (width, height) = canvas.size();
         if let Some((rows, took)) = self.timing.lock().expect("never poisoned").last.take() {
@@ -155,7 +157,7 @@ impl Accumulation {
         if self.samples == 0 {
             canvas.renderer().clear_rows(&canvas.prepared.buffers, rows.clone());
         }
-        canvas.renderer().trace_rows(&canvas.prepared.buffers, self.samples, options, rows.clone());
+        canvas.renderer().trace_rows(&canvas.prepared.buffers, self.samples, options, rows.clone())?;
         self.in_flight.fetch_add(1, Ordering::AcqRel);
         let (in_flight, timing, submitted, count) =
             (Arc::clone(&self.in_flight), Arc::clone(&self.timing), Instant::now(), rows.len() as u32);
@@ -176,7 +178,7 @@ impl Accumulation {
             self.samples += 1;
             self.rows_left = None;
         }
-        Step::Traced
+        Ok(Step::Traced)
     }
 
     /// Collects ray counts that have arrived and asks for the next ones.

@@ -257,7 +257,13 @@ impl TracedImage {
         let Some(options) = self.canvas.as_ref().map(|c| settings.trace_options(c)) else { return };
         let target = settings.target_samples();
         let Some(canvas) = self.canvas.as_mut() else { return };
-        let step = self.acc.step(canvas, &options, target);
+        let step = match self.acc.step(canvas, &options, target) {
+            Ok(step) => step,
+            Err(e) => {
+                *error = Some(one_line(e));
+                return;
+            }
+        };
         self.frame_time.rendering = step != Step::Done;
         match step {
             Step::Traced => {

@@ -9,7 +9,7 @@ use glam::Vec3;
 use glint_gpu::ToneMap;
 use glint_scene::gpu_types::View;
 use glint_scene::MAX_DEPTH_LIMIT;
-use glint_scene::{Attenuation, DepthCue, Light, LightKind, Projection, ShadowMode, Shape, SpecularModel};
+use glint_scene::{Attenuation, Checker, DepthCue, Light, LightKind, Projection, ShadowMode, Shape, SpecularModel};
 
 use crate::app::ViewerApp;
 use crate::camera_control;
@@ -55,6 +55,7 @@ fn kind_name(shape: &Shape) -> &'static str {
         Shape::Triangle { .. } => "triangle",
         Shape::Polygon { .. } => "polygon",
         Shape::Cone { .. } => "cone",
+        Shape::Plane { .. } => "plane",
     }
 }
 
@@ -117,6 +118,12 @@ impl ViewerApp {
                 reset = ui.button("Reset").on_hover_text("the camera of the scene file").clicked();
                 frame = ui.button("Frame all").on_hover_text("aim at the whole scene").clicked();
             });
+            if let Some(frames) = doc.scene.animation.as_ref().map(|a| a.frames) {
+                let slider = Slider::new(&mut doc.frame, 0..=frames - 1).text("animation frame");
+                if ui.add(slider).on_hover_text("the camera and lights of this frame of the [animation]").changed() {
+                    doc.scene.set_frame(doc.frame);
+                }
+            }
             ui.small("Left drag: orbit · right or middle drag: pan · wheel: zoom · W A S D Q E: fly (Shift: faster)");
         });
         let Some(doc) = self.document.loaded.as_mut() else { return };
@@ -311,6 +318,18 @@ impl ViewerApp {
                 (true, None) => mat.metallic_f0 = Some(mat.color),
                 (false, Some(_)) => mat.metallic_f0 = None,
                 (true, Some(f0)) => colour(ui, "F0", f0),
+                (false, None) => {}
+            }
+            let mut checkered = mat.checker.is_some();
+            ui.checkbox(&mut checkered, "checker (O_d above on even tiles)");
+            match (checkered, &mut mat.checker) {
+                (true, None) => mat.checker = Some(Checker { color: mat.color * 0.25, size: 1.0 }),
+                (false, Some(_)) => mat.checker = None,
+                (true, Some(c)) => {
+                    colour(ui, "O_d of the odd tiles", &mut c.color);
+                    ui.add(slider(&mut c.size, 0.01..=100.0, "tile size").logarithmic(true));
+                    c.size = c.size.max(0.01);
+                }
                 (false, None) => {}
             }
             colour(ui, "k_m reflectance", &mut mat.reflect);

@@ -63,14 +63,13 @@ impl Selection {
         }
     }
 
-    /// The selected object's outline and the point lights' markers.
+    /// The selected object's outline (none for an infinite plane) and the
+    /// point lights' markers.
     pub fn draw(&self, painter: &egui::Painter, image: &TracedImage, scene: &Scene) {
-        if let Some(object) = self.object.and_then(|i| scene.objects.get(i)) {
-            let (lo, hi) = object
-                .shapes
-                .iter()
-                .map(glint_scene::Shape::bounds)
-                .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
+        let bounds = self.object.and_then(|i| scene.objects.get(i)).and_then(|object| {
+            object.shapes.iter().filter_map(glint_scene::Shape::bounds).reduce(|(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
+        });
+        if let Some((lo, hi)) = bounds {
             let corners: Option<Vec<Pos2>> = (0..8)
                 .map(|i| {
                     let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };

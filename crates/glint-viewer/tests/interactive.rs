@@ -77,7 +77,7 @@ fn trace_in_bands(scene: &SceneBuffers, options: &RenderOptions) {
             if sample == 0 {
                 renderer().clear_rows(scene, y..y + 16);
             }
-            renderer().trace_rows(scene, sample, options, y..y + 16);
+            renderer().trace_rows(scene, sample, options, y..y + 16).unwrap();
         }
     }
 }

@@ -113,6 +113,7 @@ pub fn material(name: String, color: Vec3, kd: f32, ks: f32, shine: f32, t: f32,
         transmit: Vec3::splat(t),
         ior: if ior > 0.0 { ior } else { 1.0 },
         fresnel: t > 0.0,
+        checker: None,
     }
 }
 
@@ -148,6 +149,7 @@ pub fn parse(source: &str, path: &Path, options: &NffOptions) -> Result<Scene, L
         objects: contents.objects,
         depth_cue: None,
         render: RenderSettings::default(),
+        animation: None,
         warnings: contents.warnings,
     })
 }

@@ -289,6 +289,7 @@ fn generate(shapes: &[Shape]) -> String {
                 writeln!(out, "pp 3").unwrap();
                 (0..3).try_for_each(|i| writeln!(out, "{} {}", v3(vertices[i]), v3(normals[i])))
             }
+            Shape::Plane { .. } => unreachable!("NFF has no planes"),
         }
         .unwrap();
     }
@@ -303,9 +304,10 @@ fn generated_files_round_trip() {
         let o = Vec3::new(f * 0.37 - 3.0, (f * 1.3).sin(), f / 7.0);
         shapes.push(Shape::Sphere { center: o, radius: 0.1 + f / 100.0 });
         shapes.push(Shape::Cone { base: o, base_radius: 0.3, apex: o + Vec3::new(0.1, 1.0, f / 3.0), apex_radius: f / 40.0 });
-        let ring: Vec<Vec3> = (0..(3 + i % 9))
+        // At least four vertices: a polygon of three is loaded as a triangle.
+        let ring: Vec<Vec3> = (0..(4 + i % 8))
             .map(|k| {
-                let a = k as f32 * std::f32::consts::TAU / (3 + i % 9) as f32;
+                let a = k as f32 * std::f32::consts::TAU / (4 + i % 8) as f32;
                 let r = if k % 2 == 1 { 0.5 } else { 1.0 };
                 o + Vec3::new(r * a.cos(), r * a.sin(), 0.0)
             })
@@ -357,6 +359,7 @@ fn counts(s: &Scene) -> Counts {
             Shape::Cone { .. } => c.cones += 1,
             Shape::Polygon { .. } => c.polygons += 1,
             Shape::Triangle { .. } => c.triangles += 1,
+            Shape::Plane { .. } => unreachable!("NFF has no planes"),
         }
     }
     c
@@ -370,21 +373,21 @@ fn every_spd_database_loads() {
         ("balls:4", c(7381, 0, 1, 0, 3, 0)),
         ("gears:1", c(0, 0, 147, 0, 5, 0)),
         ("gears:4", c(0, 0, 9345, 0, 5, 0)),
-        ("mount:1", c(4, 0, 8, 0, 1, 0)),
-        ("mount:6", c(4, 0, 8192, 0, 1, 0)),
+        ("mount:1", c(4, 0, 0, 8, 1, 0)),
+        ("mount:6", c(4, 0, 0, 8192, 1, 0)),
         ("rings:1", c(30, 30, 1, 0, 3, 0)),
         ("rings:7", c(4200, 4200, 1, 0, 3, 0)),
         // Two degenerate patches, each written as two triangles: 4 warnings.
         ("teapot:1", c(0, 0, 1, 52, 2, 4)),
         ("teapot:6", c(0, 0, 36, 2256, 2, 0)),
-        ("tetra:1", c(0, 0, 4, 0, 1, 0)),
-        ("tetra:6", c(0, 0, 4096, 0, 1, 0)),
+        ("tetra:1", c(0, 0, 0, 4, 1, 0)),
+        ("tetra:6", c(0, 0, 0, 4096, 1, 0)),
         ("tree:1", c(3, 3, 1, 0, 7, 0)),
         ("tree:11", c(4095, 4095, 1, 0, 7, 0)),
         ("jacks:3", c(438, 219, 0, 0, 1, 0)),
         ("shells:5", c(5761, 0, 0, 0, 1, 0)),
         ("lattice:12", c(2197, 6084, 0, 0, 6, 0)),
-        ("sombrero:2", c(0, 0, 7938, 0, 1, 0)),
+        ("sombrero:2", c(0, 0, 0, 7938, 1, 0)),
         ("nurbtst:1", c(0, 0, 0, 1500, 1, 0)),
     ]
     .into_iter()

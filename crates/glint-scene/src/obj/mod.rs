@@ -78,7 +78,7 @@ impl Mesh {
         self.parts
             .iter()
             .flat_map(|p| &p.triangles)
-            .map(Shape::bounds)
+            .filter_map(Shape::bounds)
             .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
     }
 }
@@ -362,6 +362,7 @@ pub fn material_from_mtl(m: &tobj::Material) -> Material {
         transmit,
         ior,
         fresnel: matches!(illum, 5 | 7),
+        checker: None,
     }
 }
 
@@ -411,6 +412,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
         objects: mesh.parts.into_iter().map(|p| Object { material: p.material, shapes: p.triangles }).collect(),
         depth_cue: None,
         render: RenderSettings::default(),
+        animation: None,
         warnings: mesh.warnings,
     })
 }

@@ -11,14 +11,14 @@ use glam::Vec3;
 use toml::Spanned;
 
 use super::colour_warning;
-use super::defs::{CameraDef, DepthCueDef, FileDef, ImageDef, LightDef, MaterialDef, RenderDef};
+use super::defs::{CameraDef, CheckerDef, DepthCueDef, FileDef, ImageDef, LightDef, MaterialDef, RenderDef};
 use super::mesh::Meshes;
 use super::radians_warning;
 use super::values::{Num, Rgb};
 use crate::scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
 use crate::{
-    Attenuation, Camera, DepthCue, Light, LightKind, LoadError, Location, Material, Projection, RenderSettings, Scene,
-    ShadowMode, SpecularModel,
+    Attenuation, Camera, Checker, DepthCue, Light, LightKind, LoadError, Location, Material, Projection, RenderSettings,
+    Scene, ShadowMode, SpecularModel,
 };
 
 pub(super) struct Builder<'a> {
@@ -30,7 +30,12 @@ pub(super) struct Builder<'a> {
 
 impl Builder<'_> {
     pub(super) fn error_at<T>(&self, spanned: &Spanned<T>, message: impl Into<String>) -> LoadError {
-        LoadError::new(self.path, Some(Location::of_offset(self.source, spanned.span().start)), message)
+        self.error_at_offset(spanned.span().start, message)
+    }
+
+    /// An error at byte `offset` of the file.
+    pub(super) fn error_at_offset(&self, offset: usize, message: impl Into<String>) -> LoadError {
+        LoadError::new(self.path, Some(Location::of_offset(self.source, offset)), message)
     }
 
     pub(super) fn warn_at<T>(&self, spanned: &Spanned<T>, message: impl Into<String>) {
@@ -89,6 +94,8 @@ impl Builder<'_> {
             names.insert(name.as_str(), materials.len());
             materials.push(self.material(name, def.get_ref())?);
         }
+        // Only the file's own [[light]]s are keyed: included lights come later.
+        let animation = file.animation.as_ref().map(|a| self.animation(a, &camera, &lights)).transpose()?;
         let mut meshes = Meshes::default();
         let mut objects = Vec::with_capacity(file.object.len());
         for o in &file.object {
@@ -102,7 +109,7 @@ impl Builder<'_> {
             self.include(include, &mut materials, &mut objects, &mut lights, &mut warnings)?;
         }
 
-        Ok(Scene { width, height, background, camera, ambient, lights, materials, objects, depth_cue, render, warnings })
+        Ok(Scene { width, height, background, camera, ambient, lights, materials, objects, depth_cue, render, animation, warnings })
     }
 
     fn image(&self, image: &Spanned<ImageDef>) -> Result<(u32, u32, Vec3), LoadError> {
@@ -126,24 +133,14 @@ impl Builder<'_> {
                     return Err(self.error_at(h, "height: only an orthographic camera has a view-plane height"));
                 }
                 let fov = def.fov.as_ref().ok_or_else(|| self.error_at(camera, "camera: missing field `fov`"))?;
-                let fov_y_degrees = fov.get_ref().0;
-                if !(fov_y_degrees > 0.0 && fov_y_degrees < 180.0) {
-                    return Err(self.error_at(fov, format!("fov: {fov_y_degrees} is not between 0 and 180 degrees")));
-                }
-                if let Some(warning) = radians_warning("fov", fov_y_degrees) {
-                    self.warn_at(fov, warning);
-                }
-                Projection::Perspective { fov_y_degrees }
+                Projection::Perspective { fov_y_degrees: self.fov(fov)? }
             }
             "orthographic" => {
                 if let Some(f) = &def.fov {
                     return Err(self.error_at(f, "fov: an orthographic camera has a view-plane `height`, not a field of view"));
                 }
                 let h = def.height.as_ref().ok_or_else(|| self.error_at(camera, "camera: missing field `height`"))?;
-                if h.get_ref().0 <= 0.0 {
-                    return Err(self.error_at(h, "height: must be positive"));
-                }
-                Projection::Orthographic { height: h.get_ref().0 }
+                Projection::Orthographic { height: self.view_height(h)? }
             }
             other => {
                 let k = def.kind.as_ref().expect("a non-default kind was written");
@@ -158,6 +155,26 @@ impl Builder<'_> {
             return Err(self.error_at(camera, "camera: `up` is parallel to the view direction (or eye equals look_at)"));
         }
         Ok(camera_value)
+    }
+
+    /// A perspective camera's vertical field of view, in degrees.
+    pub(super) fn fov(&self, fov: &Spanned<Num>) -> Result<f32, LoadError> {
+        let degrees = fov.get_ref().0;
+        if !(degrees > 0.0 && degrees < 180.0) {
+            return Err(self.error_at(fov, format!("fov: {degrees} is not between 0 and 180 degrees")));
+        }
+        if let Some(warning) = radians_warning("fov", degrees) {
+            self.warn_at(fov, warning);
+        }
+        Ok(degrees)
+    }
+
+    /// An orthographic camera's view-plane height.
+    pub(super) fn view_height(&self, height: &Spanned<Num>) -> Result<f32, LoadError> {
+        if height.get_ref().0 <= 0.0 {
+            return Err(self.error_at(height, "height: must be positive"));
+        }
+        Ok(height.get_ref().0)
     }
 
     fn render(&self, def: &RenderDef) -> Result<RenderSettings, LoadError> {
@@ -286,6 +303,15 @@ impl Builder<'_> {
             transmit: self.optional_colour(&def.transmit, "transmit", true).unwrap_or(Vec3::ZERO),
             ior: self.ranged(&def.ior, "ior", 1.0, 0.01, 100.0)?,
             fresnel: def.fresnel.unwrap_or(false),
+            checker: def.checker.as_ref().map(|c| self.checker(&c.get_ref().0)).transpose()?,
         })
+    }
+
+    fn checker(&self, def: &CheckerDef) -> Result<Checker, LoadError> {
+        let size = def.size.get_ref().0;
+        if size <= 0.0 {
+            return Err(self.error_at(&def.size, format!("size: a checker's tiles must be larger than 0, found {size}")));
+        }
+        Ok(Checker { color: self.colour(&def.color, "color", true), size })
     }
 }

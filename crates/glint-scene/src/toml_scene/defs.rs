@@ -7,7 +7,8 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::values::{Matrix, Num, Rgb, Scale, V3};
+use super::animation::AnimationDef;
+use super::values::{Inline, Matrix, Num, Rgb, Scale, V2, V3};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -25,6 +26,7 @@ pub(super) struct FileDef {
     pub(super) object: Vec<Spanned<ObjectDef>>,
     #[serde(default)]
     pub(super) include: Vec<Spanned<IncludeDef>>,
+    pub(super) animation: Option<Spanned<AnimationDef>>,
 }
 
 #[derive(Deserialize)]
@@ -110,6 +112,15 @@ pub(super) struct MaterialDef {
     pub(super) transmit: Option<Spanned<Rgb>>,
     pub(super) ior: Option<Spanned<Num>>,
     pub(super) fresnel: Option<bool>,
+    pub(super) checker: Option<Spanned<Inline<CheckerDef>>>,
+}
+
+/// `checker = { color = …, size = … }` in a material.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CheckerDef {
+    pub(super) color: Spanned<Rgb>,
+    pub(super) size: Spanned<Num>,
 }
 
 #[derive(Deserialize)]
@@ -133,4 +144,7 @@ pub(super) struct ObjectDef {
     pub(super) matrix: Option<Spanned<Matrix>>,
     pub(super) subdivisions: Option<Spanned<i64>>,
     pub(super) displacement: Option<Spanned<Num>>,
+    pub(super) point: Option<V3>,
+    pub(super) normal: Option<Spanned<V3>>,
+    pub(super) size: Option<Spanned<V2>>,
 }

@@ -23,7 +23,11 @@
 //!
 //! An error in the reference (a missing file, a bad transform) names the TOML
 //! line; an error inside the OBJ, MTL or NFF file names that file.
+//!
+//! An `[animation]` table (`animation`) moves the camera and the point lights
+//! from frame to frame.
 
+mod animation;
 mod build;
 mod defs;
 mod mesh;
@@ -39,9 +43,10 @@ use glam::Vec3;
 
 use crate::toml_errors;
 use crate::{LoadError, ReadError, Scene};
+use animation::{AnimationDef, CameraKeyDef, LightKeyDef, OrbitDef};
 use build::Builder;
 
-use defs::{AmbientDef, CameraDef, DepthCueDef, FileDef, ImageDef, IncludeDef, LightDef, MaterialDef, ObjectDef, RenderDef};
+use defs::{AmbientDef, CameraDef, CheckerDef, DepthCueDef, FileDef, ImageDef, IncludeDef, LightDef, MaterialDef, ObjectDef, RenderDef};
 
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let source = crate::read_text(path).map_err(|e| match e {
@@ -71,8 +76,13 @@ fn schema_fields(path: &[&str]) -> Option<&'static [&'static str]> {
         ["depth_cue"] => fields_of::<DepthCueDef>(),
         ["light"] => fields_of::<LightDef>(),
         ["material", _] => fields_of::<MaterialDef>(),
+        ["material", _, "checker"] => fields_of::<CheckerDef>(),
         ["object"] => fields_of::<ObjectDef>(),
         ["include"] => fields_of::<IncludeDef>(),
+        ["animation"] => fields_of::<AnimationDef>(),
+        ["animation", "camera"] => fields_of::<CameraKeyDef>(),
+        ["animation", "light"] => fields_of::<LightKeyDef>(),
+        ["animation", "orbit"] => fields_of::<OrbitDef>(),
         _ => return None,
     })
 }
@@ -83,6 +93,7 @@ pub(super) fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
         "sphere" => &["center", "radius"],
         "triangle" => &["vertices", "normals"],
         "polygon" => &["vertices"],
+        "plane" => &["point", "normal", "size"],
         "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
         "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
         "icosphere" => &["center", "radius", "subdivisions", "displacement"],

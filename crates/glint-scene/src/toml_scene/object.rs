@@ -38,7 +38,7 @@ impl Builder<'_> {
         let Some(allowed) = object_keys(kind) else {
             return Err(self.error_at(
                 &def.kind,
-                format!("type: unknown object type `{kind}`, expected sphere, triangle, polygon, cone, cylinder, mesh or icosphere"),
+                format!("type: unknown object type `{kind}`, expected sphere, triangle, polygon, plane, cone, cylinder, mesh or icosphere"),
             ));
         };
         let present = [
@@ -57,6 +57,9 @@ impl Builder<'_> {
             ("matrix", def.matrix.is_some()),
             ("subdivisions", def.subdivisions.is_some()),
             ("displacement", def.displacement.is_some()),
+            ("point", def.point.is_some()),
+            ("normal", def.normal.is_some()),
+            ("size", def.size.is_some()),
         ];
         if let Some((key, _)) = present.iter().find(|(k, p)| *p && !allowed.contains(k)) {
             return Err(self.error_at(object, format!("object: `{key}` does not apply to a {kind}")));
@@ -88,7 +91,7 @@ impl Builder<'_> {
                 return Ok(());
             }
             let shapes = icosphere::icosphere(center, radius, subdivisions, displacement);
-            if !shapes.iter().all(crate::bounds_are_finite) {
+            if !shapes.iter().all(Shape::is_finite) {
                 return Err(self.error_at(object, "object: the icosphere reaches beyond the range of 32-bit floats"));
             }
             objects.push(Object { material, shapes });
@@ -127,6 +130,21 @@ impl Builder<'_> {
                     Shape::triangle([vertices[0], vertices[1], vertices[2]], normals)
                 };
                 (built, vs.span().start)
+            }
+            "plane" => {
+                let point = def.point.ok_or_else(|| missing("point"))?.0;
+                let n = def.normal.as_ref().ok_or_else(|| missing("normal"))?;
+                let normal = crate::unit(n.get_ref().0).ok_or_else(|| self.error_at(n, "normal: must not be zero"))?;
+                match &def.size {
+                    None => (Shape::plane(point, normal), object.span().start),
+                    Some(size) => {
+                        let sides = size.get_ref().0;
+                        if let Some(side) = sides.iter().find(|s| **s < 0.0) {
+                            return Err(self.error_at(size, format!("size: must not be negative, found {side}")));
+                        }
+                        (Shape::rectangle(point, normal, sides), size.span().start)
+                    }
+                }
             }
             _ => {
                 let base = def.base.ok_or_else(|| missing("base"))?.0;

@@ -297,6 +297,57 @@ fn colours_written_0_to_255_and_radian_angles_warn() {
 }
 
 #[test]
+fn planes_are_infinite_or_rectangles() {
+    let s = parse_str(
+        "[[object]]\ntype = \"plane\"\npoint = [0, -1, 0]\nnormal = [0, 2, 0]\n\n\
+         [[object]]\ntype = \"plane\"\npoint = [0, 0, -3]\nnormal = [0, 0, 1]\nsize = [4, 2]\n",
+    )
+    .unwrap();
+    assert_eq!(s.objects[0].shapes, [Shape::Plane { point: Vec3::new(0.0, -1.0, 0.0), normal: Vec3::Y }], "the normal is normalised");
+    assert_eq!(s.objects[1].shapes, [Shape::rectangle(Vec3::new(0.0, 0.0, -3.0), Vec3::Z, [4.0, 2.0]).unwrap()]);
+}
+
+#[test]
+fn plane_errors_and_warnings_point_at_the_value() {
+    let plane = |keys: &str| format!("[[object]]\ntype = \"plane\"\npoint = [0, 0, 0]\n{keys}");
+    for (keys, want) in [
+        ("", "test.toml:10:1: object: a plane needs `normal`"),
+        ("normal = [0, 0, 0]\n", "test.toml:13:10: normal: must not be zero"),
+        ("normal = [0, 1, 0]\nsize = [1, -2]\n", "test.toml:14:8: size: must not be negative, found -2"),
+        ("normal = [0, 1, 0]\nsize = [1, 2, 3]\n", "test.toml:14:8: size: expected an array of 2 numbers, found 3 values"),
+        ("normal = [0, 1, 0]\nradius = 1\n", "test.toml:10:1: object: `radius` does not apply to a plane"),
+        ("nomral = [0, 1, 0]\n", "test.toml:13:1: unknown key `nomral` in a plane object; did you mean `normal`?"),
+    ] {
+        assert_eq!(error(&plane(keys)), want);
+    }
+    let e = error("[[object]]\ntype = \"plane\"\npoint = [3e38, 3e38, 0]\nnormal = [1, 1, 0]\n");
+    assert_eq!(e, "test.toml:10:1: object: the plane reaches beyond the range of 32-bit floats");
+    let w = warnings(&format!("{MINIMAL}{}", plane("normal = [0, 1, 0]\nsize = [0, 2]\n")));
+    assert_eq!(w, ["w.toml:14:8: degenerate rectangle (no area) skipped"]);
+}
+
+#[test]
+fn a_checker_on_any_material() {
+    let s = parse_str("[material.board]\ncolor = [1, 0, 0]\nchecker = { color = [1, 1, 0], size = 2 }\n").unwrap();
+    assert_eq!(s.materials[1].color, Vec3::X);
+    assert_eq!(s.materials[1].checker, Some(crate::Checker { color: Vec3::new(1.0, 1.0, 0.0), size: 2.0 }));
+    assert_eq!(s.materials[0].checker, None);
+    let board = |checker: &str| format!("[material.board]\ncolor = 1\nchecker = {checker}\n");
+    for (checker, want) in [
+        ("{ color = 1 }", "test.toml:12:11: checker: missing key `size`"),
+        ("{ color = 1, size = 0 }", "test.toml:12:31: size: a checker's tiles must be larger than 0, found 0"),
+        ("{ colour = 1, size = 1 }", "test.toml:12:13: unknown key `colour` in the checker of [material.board]; did you mean `color`?"),
+        ("{ color = 1, size = 1, ior = 2 }", "test.toml:12:34: unknown key `ior` in the checker of [material.board], which takes `color`, `size`"),
+        ("[1, 1, 0]", "test.toml:12:11: checker: expected a table, found an array"),
+    ] {
+        assert_eq!(error(&board(checker)), want, "{checker}");
+    }
+    let w = warnings(&format!("{MINIMAL}{}", board("{ color = [1.5, 0, 0], size = 1 }")));
+    assert_eq!(w.len(), 1);
+    assert!(w[0].starts_with("w.toml:12:21: color: [1.5, 0, 0] is above 1"), "{w:?}");
+}
+
+#[test]
 fn up_parallel_to_view_is_an_error() {
     let src = MINIMAL.replace("fov = 40", "fov = 40\nup = [0, 0, 1]");
     let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
@@ -321,7 +372,7 @@ mod files {
     }
 
     fn bounds(shapes: &[Shape]) -> (Vec3, Vec3) {
-        shapes.iter().map(Shape::bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d))).unwrap()
+        shapes.iter().filter_map(Shape::bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d))).unwrap()
     }
 
     fn close(a: Vec3, b: Vec3) -> bool {

@@ -16,6 +16,10 @@ pub(super) struct Num(pub(super) f32);
 #[derive(Debug, Clone, Copy)]
 pub(super) struct V3(pub(super) Vec3);
 
+/// Two finite numbers.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct V2(pub(super) [f32; 2]);
+
 /// A scale: one finite number for all axes, or three.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Scale(pub(super) Vec3);
@@ -73,6 +77,34 @@ impl<'de> Deserialize<'de> for V3 {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let [x, y, z]: [f64; 3] = exactly(d, "an array of 3 numbers")?;
         Ok(V3(Vec3::new(finite(x)?, finite(y)?, finite(z)?)))
+    }
+}
+
+impl<'de> Deserialize<'de> for V2 {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let [x, y]: [f64; 2] = exactly(d, "an array of 2 numbers")?;
+        Ok(V2([finite(x)?, finite(y)?]))
+    }
+}
+
+/// A table written inline (`key = { … }`). serde's derived structs also take
+/// an array of their values in order, which would read `checker = [1, 1, 0]`
+/// as a colour of 1 and a size of 1; this takes tables only.
+pub(super) struct Inline<T>(pub(super) T);
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for Inline<T> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Tables<T>(std::marker::PhantomData<T>);
+        impl<'de, T: Deserialize<'de>> Visitor<'de> for Tables<T> {
+            type Value = T;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a table")
+            }
+            fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<T, A::Error> {
+                T::deserialize(de::value::MapAccessDeserializer::new(map))
+            }
+        }
+        d.deserialize_map(Tables(std::marker::PhantomData)).map(Inline)
     }
 }
 

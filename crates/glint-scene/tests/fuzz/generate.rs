@@ -334,6 +334,18 @@ pub(crate) fn toml_material(mode: Mode, name: &'static str) -> BoxedStrategy<Str
         Mode::Sane => decimal(1.0..2.5),
         Mode::Wild => toml_number(mode),
     };
+    // An inline table; Wild also drops a key or adds one that does not belong.
+    let checker_keys = (toml_colour(mode), toml_positive(mode));
+    let checker = match mode {
+        Mode::Sane => checker_keys.prop_map(|(c, s)| format!("{{ color = {c}, size = {s} }}")).boxed(),
+        Mode::Wild => (checker_keys, prop::sample::select(vec!["", ", ior = 1", ", colour = 1"]), any::<u8>())
+            .prop_map(|((c, s), extra, drop)| match drop % 8 {
+                0 => format!("{{ size = {s}{extra} }}"),
+                1 => format!("{{ color = {c}{extra} }}"),
+                _ => format!("{{ color = {c}, size = {s}{extra} }}"),
+            })
+            .boxed(),
+    };
     toml_table(
         mode,
         format!("[material.{name}]"),
@@ -350,6 +362,7 @@ pub(crate) fn toml_material(mode: Mode, name: &'static str) -> BoxedStrategy<Str
             ("transmit", false, toml_colour(mode)),
             ("ior", false, ior),
             ("fresnel", false, toml_bool(mode)),
+            ("checker", false, checker),
         ],
     )
 }
@@ -368,6 +381,15 @@ pub(crate) fn toml_object(mode: Mode) -> BoxedStrategy<String> {
         vec![
             ("vertices", true, toml_array(toml_point(mode), 3..4)),
             ("normals", false, toml_array(toml_point(mode), 3..4)),
+        ],
+    );
+    let sides = if mode == Mode::Sane { 2..3 } else { 0..4 };
+    let plane = table(
+        kind("plane"),
+        vec![
+            ("point", true, toml_point(mode)),
+            ("normal", true, toml_point(mode)),
+            ("size", false, toml_array(toml_positive(mode), sides)),
         ],
     );
     let corners = if mode == Mode::Sane { 3..8 } else { 0..8 };
@@ -420,6 +442,7 @@ pub(crate) fn toml_object(mode: Mode) -> BoxedStrategy<String> {
         3 => sphere,
         2 => triangle,
         2 => polygon,
+        2 => plane,
         1 => cone("cone", true),
         1 => cone("cylinder", false),
         2 => mesh,

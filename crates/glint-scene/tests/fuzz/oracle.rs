@@ -7,7 +7,10 @@ use std::sync::atomic::Ordering;
 
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
-use glint_scene::gpu_types::{pack, scene_uniforms, primitive_bounds, GpuScene, BVH_STACK, LEAF, PRIM_POLYGON, PRIM_TRIANGLE, RIGHT_LEAF};
+use glint_scene::gpu_types::{
+    pack, plane_range, primitive_bounds, scene_uniforms, GpuScene, BVH_STACK, LEAF, PRIM_PLANE, PRIM_POLYGON, PRIM_TRIANGLE,
+    RIGHT_LEAF,
+};
 use glint_scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
 use glint_scene::{Attenuation, LightKind, LoadError, Projection, Scene, Shape};
 use proptest::prelude::*;
@@ -101,15 +104,16 @@ pub(crate) fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
         let scalars = [m.ambient, m.diffuse, m.specular, m.shininess];
         prop_assert!(scalars.iter().all(|v| v.is_finite() && *v >= 0.0), "{m:?}");
         prop_assert!(m.ior.is_finite() && m.ior > 0.0, "{m:?}");
-        let colours = [Some(m.color), m.specular_color, m.metallic_f0, Some(m.reflect), Some(m.transmit)];
+        let checker = m.checker.map(|c| c.color);
+        let colours = [Some(m.color), m.specular_color, m.metallic_f0, Some(m.reflect), Some(m.transmit), checker];
         prop_assert!(colours.iter().flatten().all(|c| finite_non_negative(*c)), "{m:?}");
+        prop_assert!(m.checker.is_none_or(|c| c.size.is_finite() && c.size > 0.0), "{m:?}");
     }
     for object in &scene.objects {
         prop_assert!(object.material < scene.materials.len(), "material {} of {}", object.material, scene.materials.len());
         prop_assert!(!object.shapes.is_empty(), "an object without shapes");
         for shape in &object.shapes {
-            let (lo, hi) = shape.bounds();
-            prop_assert!(lo.is_finite() && hi.is_finite(), "bounds are not finite: {shape:?}");
+            prop_assert!(shape.is_finite(), "bounds (or a plane's offset) are not finite: {shape:?}");
             match shape {
                 Shape::Sphere { center, radius } => prop_assert!(center.is_finite() && *radius > 0.0, "{shape:?}"),
                 Shape::Triangle { vertices, normals } => {
@@ -125,6 +129,9 @@ pub(crate) fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
                     prop_assert!(base.is_finite() && apex.is_finite() && base != apex, "{shape:?}");
                     prop_assert!(*base_radius >= 0.0 && *apex_radius >= 0.0 && base_radius.max(*apex_radius) > 0.0, "{shape:?}");
                 }
+                Shape::Plane { point, normal } => {
+                    prop_assert!(point.is_finite() && (normal.length() - 1.0).abs() < 1e-3, "{shape:?}")
+                }
             }
         }
     }
@@ -136,6 +143,7 @@ pub(crate) fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     let gpu_bvh = bvh.gpu().map_err(|e| TestCaseError::fail(e.to_string()))?;
     let packed = pack(scene, &bvh.order, gpu_bvh);
     check_indices(&packed)?;
+    check_planes(&packed, plane_range(scene), scene.primitive_count())?;
     let g = scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.bvh_root);
     let camera_values = [g.camera.u, g.camera.v, g.camera.w].concat();
     prop_assert!(
@@ -157,6 +165,20 @@ pub(crate) fn check_outcome(outcome: Result<Scene, LoadError>, files: &[&CaseFil
             check_scene(&scene)
         }
     }
+}
+
+/// The infinite planes, which every ray tests beside the BVH, are where the
+/// uniforms say: all the planes of the scene's `primitives`, and nothing
+/// else, at the end of the packed primitives, with materials in range.
+pub(crate) fn check_planes(scene: &GpuScene, (first, count): (u32, u32), primitives: usize) -> Result<(), TestCaseError> {
+    let (first, count) = (first as usize, count as usize);
+    prop_assert!(first + count == primitives && primitives <= scene.prims.len(), "planes {first}+{count} of {primitives} primitives");
+    for (i, p) in scene.prims[..primitives].iter().enumerate() {
+        let (kind, material) = (p.kind_material & 0xff, (p.kind_material >> 8) as usize);
+        prop_assert_eq!(kind == PRIM_PLANE, i >= first, "primitive {} is of kind {}; planes start at {}", i, kind, first);
+        prop_assert!(material < scene.materials.len(), "material {material} of {}", scene.materials.len());
+    }
+    Ok(())
 }
 
 /// Walks every BVH record reachable from the root, as any traversal might

@@ -1,0 +1,80 @@
+//! `glint bench --cold`: what a first render pays before its first pixel —
+//! each kernel's pipeline creation (on a software rasteriser, compiling the
+//! kernel to CPU code) for the primitive kinds of each scene, and the first
+//! frame against the next.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use glint_gpu::shaders::{Kernel, ShaderSource};
+use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
+use glint_scene::gpu_types::View;
+
+use crate::{exit, Failure};
+
+pub fn run(gpu: &Gpu, scenes: &[PathBuf], width: u32, height: u32, json: bool) -> Result<(), Failure> {
+    if !json {
+        let cache = match std::env::var("MESA_SHADER_CACHE_DISABLE") {
+            Ok(v) if v == "true" || v == "1" => "Mesa's shader cache disabled",
+            _ => "Mesa's shader cache enabled: set MESA_SHADER_CACHE_DISABLE=true for a fresh machine's times",
+        };
+        eprintln!("{} — {width}x{height}, {cache}; a kernel's compile = its pipeline's creation + its first run − its second", gpu.info().name);
+        println!("{:<22} {:<26} {:>17} {:>19} {:>19}", "scene", "kinds", "trace compile ms", "primary compile ms", "resolve compile ms");
+    }
+    for path in scenes {
+        measure(gpu, path, width, height, json)?;
+    }
+    Ok(())
+}
+
+fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Result<(), Failure> {
+    let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
+    // A renderer of its own, so no kernel compiled for an earlier scene is reused.
+    let renderer = &Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+    let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
+    let buffers = &prepared.buffers;
+    // Software rasterisers compile a pipeline when it first runs, not when it is
+    // created: its compile is the creation and the first run's excess over the second.
+    let compile = |kernel: Kernel, run: &dyn Fn() -> Result<(), Failure>| -> Result<Duration, Failure> {
+        let start = Instant::now();
+        renderer.create_pipelines(buffers, &[kernel])?;
+        let created = start.elapsed();
+        let runs = [(); 2].map(|_| {
+            let start = Instant::now();
+            run().map(|_| start.elapsed())
+        });
+        let [first, second] = runs;
+        Ok(created + first?.saturating_sub(second?))
+    };
+    let frame = |view: View| {
+        move || -> Result<(), Failure> {
+            let options = RenderOptions { view, ..RenderOptions::default() };
+            renderer.trace_frame(buffers, &options, &mut |_, _| {})?;
+            Ok(())
+        }
+    };
+    let trace = compile(Kernel::Trace, &frame(View::Shaded))?;
+    let primary = compile(Kernel::Primary, &frame(View::Depth))?;
+    let resolve = compile(Kernel::Resolve, &|| {
+        renderer.resolve(buffers, &RenderOptions::default())?;
+        Ok(())
+    })?;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let kinds = buffers.specialization.to_string();
+    if json {
+        let value = serde_json::json!({
+            "scene": path.display().to_string(),
+            "width": width,
+            "height": height,
+            "kinds": kinds,
+            "trace_compile_ms": ms(trace),
+            "primary_compile_ms": ms(primary),
+            "resolve_compile_ms": ms(resolve),
+        });
+        println!("{value}");
+    } else {
+        let name = path.file_stem().map_or(path.display().to_string(), |s| s.to_string_lossy().into_owned());
+        println!("{:<22} {:<26} {:>17.0} {:>19.0} {:>19.0}", name, kinds, ms(trace), ms(primary), ms(resolve));
+    }
+    Ok(())
+}

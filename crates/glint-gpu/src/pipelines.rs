@@ -1,0 +1,128 @@
+//! The kernels' compute pipelines, each created the first time something
+//! needs it, for the primitive kinds of the scene it runs on. A command creates
+//! only the pipelines it uses (each creation translates a kernel, tens of
+//! milliseconds), and a software rasteriser, which compiles a kernel to CPU
+//! code when it first runs (seconds on a fresh machine), compiles only the
+//! intersection code the scene uses.
+
+use std::collections::HashMap;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use glint_scene::specialization::Specialization;
+
+use crate::renderer::one_line;
+use crate::shaders::{Kernel, ShaderSource};
+use crate::GpuError;
+
+/// One pipeline created, and how long its creation took. A software
+/// rasteriser compiles the kernel to CPU code later, when it first runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Compilation {
+    pub kernel: Kernel,
+    pub specialization: Specialization,
+    pub time: Duration,
+}
+
+pub(crate) struct Pipelines {
+    device: wgpu::Device,
+    source: ShaderSource,
+    /// The layout of the kernels bound to a scene (trace, primary).
+    scene_layout: wgpu::PipelineLayout,
+    built: Mutex<HashMap<(Kernel, Specialization), wgpu::ComputePipeline>>,
+    compilations: Mutex<Vec<Compilation>>,
+}
+
+impl Pipelines {
+    /// Kernels read from a directory (the viewer's hot reload, possibly
+    /// mid-edit) are checked at once, so a broken file is reported before any
+    /// frame needs it; the embedded ones are checked by tests/wgsl.rs.
+    pub fn new(device: &wgpu::Device, source: &ShaderSource, scene_layout: wgpu::PipelineLayout) -> Result<Self, GpuError> {
+        if let ShaderSource::Dir(_) = source {
+            for kernel in Kernel::ALL {
+                source.compose(kernel, Specialization::ALL)?.validate()?;
+            }
+        }
+        Ok(Self {
+            device: device.clone(),
+            source: source.clone(),
+            scene_layout,
+            built: Mutex::new(HashMap::new()),
+            compilations: Mutex::new(Vec::new()),
+        })
+    }
+
+    /// The pipeline of `kernel` for scenes of `specialization`, created now if
+    /// it has not been.
+    pub fn get(&self, kernel: Kernel, specialization: Specialization) -> Result<wgpu::ComputePipeline, GpuError> {
+        let specialization = if kernel.is_specialised() { specialization } else { Specialization::ALL };
+        let key = (kernel, specialization);
+        if let Some(pipeline) = self.built.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+            return Ok(pipeline.clone());
+        }
+        let layout = matches!(kernel, Kernel::Trace | Kernel::Primary).then_some(&self.scene_layout);
+        let start = Instant::now();
+        let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, layout)?;
+        let compilation = Compilation { kernel, specialization, time: start.elapsed() };
+        self.compilations.lock().unwrap_or_else(|e| e.into_inner()).push(compilation);
+        self.built.lock().unwrap_or_else(|e| e.into_inner()).insert(key, pipeline.clone());
+        Ok(pipeline)
+    }
+
+    /// Creates the pipelines of `kernels` for `specialization` that do not exist yet.
+    pub fn create(&self, kernels: &[Kernel], specialization: Specialization) -> Result<(), GpuError> {
+        kernels.iter().try_for_each(|&kernel| self.get(kernel, specialization).map(drop))
+    }
+
+    /// Every pipeline created so far, in order.
+    pub fn compilations(&self) -> Vec<Compilation> {
+        self.compilations.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+}
+
+/// Creates the compute pipeline of `kernel` inside an error scope, so a
+/// shader that the driver rejects fails here, loudly, instead of later reading
+/// back zeros. With `layout` `None` the pipeline derives its own bind group
+/// layout.
+pub(crate) fn create_pipeline(
+    device: &wgpu::Device,
+    source: &ShaderSource,
+    kernel: Kernel,
+    specialization: Specialization,
+    layout: Option<&wgpu::PipelineLayout>,
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let entry = kernel.entry_point();
+    let composed = source.compose(kernel, specialization)?;
+    composed.validate()?;
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let descriptor = wgpu::ShaderModuleDescriptor {
+        label: Some(entry),
+        source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
+    };
+    let module = match source {
+        // SAFETY: the embedded kernels are Glint's own. Every loop in them ends:
+        // BVH traversal pushes at most one node per level of a tree whose depth
+        // the builder bounds by the stack size, and every other loop runs over a
+        // count the host wrote. Every index stays in its array: node and
+        // primitive indices come from the same builder and packer. So wgpu's
+        // injected loop counters and index clamps, which cost the software
+        // rasteriser ~5% of traversal time, are not needed. Kernels read from a
+        // directory (the viewer's hot reload, possibly mid-edit) keep them.
+        ShaderSource::Embedded => unsafe {
+            device.create_shader_module_trusted(descriptor, wgpu::ShaderRuntimeChecks::unchecked())
+        },
+        ShaderSource::Dir(_) => device.create_shader_module(descriptor),
+    };
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        return Err(GpuError::Shader(format!("{entry}: {}", one_line(&e))));
+    }
+    Ok(pipeline)
+}
