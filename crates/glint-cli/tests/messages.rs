@@ -312,7 +312,7 @@ fn check_summarises_scenes_without_a_gpu() {
         "  render     max depth 6, cutoff 0.0039, shadows tinted, reflections on, refractions on; depth cue from 6 to 30\n",
         "  warnings   none\n",
         "spd:tetra:1: ok\n",
-        "  objects    4, made of 4 primitives: 4 polygons\n",
+        "  objects    4, made of 4 primitives: 4 triangles\n",
     ] {
         assert!(text.contains(needle), "`{needle}` missing in:\n{text}");
     }
