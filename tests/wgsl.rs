@@ -29,8 +29,8 @@ fn every_kernel_validates() {
     }
 }
 
-/// Every kernel that intersects primitives validates for every combination of
-/// kinds a scene can hold, and only those kernels are compiled per scene.
+/// Every kernel that intersects primitives validates for every specialisation
+/// a scene can need, and only those kernels are compiled per scene.
 #[test]
 fn every_specialisation_validates() {
     for kernel in Kernel::ALL {
@@ -40,9 +40,9 @@ fn every_specialisation_validates() {
         if !intersects {
             continue;
         }
-        for bits in 0..32u32 {
-            let [spheres, triangles, polygons, cones, planes] = [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
-            let kinds = Specialization { spheres, triangles, polygons, cones, planes };
+        for bits in 0..64u32 {
+            let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
+            let kinds = Specialization { spheres, triangles, polygons, cones, planes, secondary_rays };
             if let Err(e) = ShaderSource::Embedded.compose(kernel, kinds).unwrap().validate() {
                 panic!("{kernel:?} for {kinds}: {e}");
             }

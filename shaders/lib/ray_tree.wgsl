@@ -51,7 +51,9 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         } else {
             color += weight * local;
         }
-        if pending.depth >= uniforms.max_depth {
+        // A kernel for a scene whose materials neither reflect nor transmit
+        // (HAS_SECONDARY_RAYS false) compiles without the rest.
+        if !HAS_SECONDARY_RAYS || pending.depth >= uniforms.max_depth {
             continue;
         }
 

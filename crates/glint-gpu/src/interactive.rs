@@ -184,7 +184,9 @@ impl Renderer {
         self.queue.write_buffer(&scene.uniforms, 0, bytemuck::bytes_of(uniforms));
     }
 
-    /// Writes `materials` (packed in scene order) over the scene's materials.
+    /// Writes `materials` (packed in scene order) over the scene's materials;
+    /// a scene uploaded without secondary rays takes no material that makes
+    /// them (see `Specialization::with_secondary_rays`).
     pub fn write_materials(&self, scene: &SceneBuffers, materials: &[GpuMaterial]) -> Result<(), GpuError> {
         if materials.len() > scene.material_capacity() {
             return Err(GpuError::Runtime(format!(
@@ -192,6 +194,11 @@ impl Renderer {
                 materials.len(),
                 scene.material_capacity()
             )));
+        }
+        if !scene.specialization.covers(materials) {
+            return Err(GpuError::Runtime(
+                "the scene was uploaded for eye rays only: a reflecting or transmitting material needs it uploaded with secondary rays".into(),
+            ));
         }
         self.queue.write_buffer(&scene.materials, 0, bytemuck::cast_slice(materials));
         Ok(())

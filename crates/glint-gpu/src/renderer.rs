@@ -286,7 +286,7 @@ impl Renderer {
             materials,
             lights,
             scene_bytes,
-            specialization: Specialization::of(&scene.prims),
+            specialization: Specialization::of(scene),
         })
     }
 

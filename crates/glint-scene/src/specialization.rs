@@ -1,13 +1,15 @@
 //! What a kernel is compiled for. A software rasteriser compiles each kernel
 //! to CPU code when it is first used, and the time it takes grows with the code
 //! it is given: a kernel specialised to a scene carries no intersection code for
-//! primitive kinds the scene does not hold (the kinds become `const` flags in
-//! the kernel's prelude, whose dead branches the driver's compiler removes
-//! before it generates code).
+//! primitive kinds the scene does not hold, and no reflected or refracted rays
+//! when no material makes any (each becomes a `const` flag in the kernel's
+//! prelude, whose dead branches the driver's compiler removes before it
+//! generates code).
 
-use crate::gpu_types::{GpuPrim, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
+use crate::gpu_types::{GpuMaterial, GpuScene, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
 
-/// The primitive kinds a kernel can intersect.
+/// The primitive kinds a kernel can intersect, and whether its ray tree goes
+/// past the eye ray.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Specialization {
     pub spheres: bool,
@@ -15,35 +17,58 @@ pub struct Specialization {
     pub polygons: bool,
     pub cones: bool,
     pub planes: bool,
+    /// Some material reflects or transmits, so rays may spawn reflected and
+    /// refracted rays.
+    pub secondary_rays: bool,
 }
 
 impl Specialization {
-    /// Every kind: for a kernel that must serve any scene.
-    pub const ALL: Specialization = Specialization { spheres: true, triangles: true, polygons: true, cones: true, planes: true };
+    /// Everything: for a kernel that must serve any scene.
+    pub const ALL: Specialization =
+        Specialization { spheres: true, triangles: true, polygons: true, cones: true, planes: true, secondary_rays: true };
 
-    /// The kinds among `prims`.
-    pub fn of(prims: &[GpuPrim]) -> Specialization {
-        let mut kinds = Specialization { spheres: false, triangles: false, polygons: false, cones: false, planes: false };
-        for p in prims {
+    /// What `scene` needs.
+    pub fn of(scene: &GpuScene) -> Specialization {
+        let mut needs = Specialization {
+            spheres: false,
+            triangles: false,
+            polygons: false,
+            cones: false,
+            planes: false,
+            secondary_rays: scene.materials.iter().any(spawns_secondary_rays),
+        };
+        for p in &scene.prims {
             match p.kind() {
-                PRIM_SPHERE => kinds.spheres = true,
-                PRIM_TRIANGLE => kinds.triangles = true,
-                PRIM_POLYGON => kinds.polygons = true,
-                PRIM_CONE => kinds.cones = true,
-                PRIM_PLANE => kinds.planes = true,
+                PRIM_SPHERE => needs.spheres = true,
+                PRIM_TRIANGLE => needs.triangles = true,
+                PRIM_POLYGON => needs.polygons = true,
+                PRIM_CONE => needs.cones = true,
+                PRIM_PLANE => needs.planes = true,
                 other => unreachable!("primitive kind {other} is not packed by gpu_types"),
             }
         }
-        kinds
+        needs
     }
 
-    fn flags(self) -> [(&'static str, bool); 5] {
+    /// The same kinds, with secondary rays whatever the materials: for a scene
+    /// whose materials change in place (the viewer's).
+    pub fn with_secondary_rays(self) -> Specialization {
+        Specialization { secondary_rays: true, ..self }
+    }
+
+    /// Whether a kernel of this specialisation renders `materials` rightly.
+    pub fn covers(self, materials: &[GpuMaterial]) -> bool {
+        self.secondary_rays || !materials.iter().any(spawns_secondary_rays)
+    }
+
+    fn flags(self) -> [(&'static str, bool); 6] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
             ("HAS_POLYGONS", self.polygons),
             ("HAS_CONES", self.cones),
             ("HAS_PLANES", self.planes),
+            ("HAS_SECONDARY_RAYS", self.secondary_rays),
         ]
     }
 
@@ -51,6 +76,10 @@ impl Specialization {
     pub fn wgsl(self) -> String {
         self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect()
     }
+}
+
+fn spawns_secondary_rays(m: &GpuMaterial) -> bool {
+    m.reflect.iter().chain(&m.transmit).any(|&k| k > 0.0)
 }
 
 impl std::fmt::Display for Specialization {
@@ -63,37 +92,58 @@ impl std::fmt::Display for Specialization {
             ("planes", self.planes),
         ];
         let kinds: Vec<&str> = names.iter().filter(|(_, on)| *on).map(|(name, _)| *name).collect();
-        if kinds.is_empty() {
-            f.write_str("no primitives")
-        } else {
-            f.write_str(&kinds.join("+"))
+        f.write_str(if kinds.is_empty() { "no primitives".to_string() } else { kinds.join("+") }.as_str())?;
+        if !self.secondary_rays {
+            f.write_str(", eye rays only")?;
         }
+        Ok(())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gpu_types::GpuPrim;
     use bytemuck::Zeroable;
 
-    fn prim(kind: u32) -> GpuPrim {
-        GpuPrim { kind_material: kind | (7 << 8), ..GpuPrim::zeroed() }
+    fn scene(kinds: &[u32], reflect: f32) -> GpuScene {
+        GpuScene {
+            prims: kinds.iter().map(|&kind| GpuPrim { kind_material: kind | (7 << 8), ..GpuPrim::zeroed() }).collect(),
+            nodes: Vec::new(),
+            grids: Vec::new(),
+            bvh_root: 0,
+            materials: vec![GpuMaterial { reflect: [0.0, reflect, 0.0], ..GpuMaterial::zeroed() }],
+            lights: Vec::new(),
+            points: Vec::new(),
+            light_count: 0,
+        }
     }
 
     #[test]
     fn a_scene_specialises_to_the_kinds_it_holds() {
-        let kinds = Specialization::of(&[prim(PRIM_TRIANGLE), prim(PRIM_CONE), prim(PRIM_TRIANGLE)]);
-        assert_eq!(kinds, Specialization { spheres: false, triangles: true, polygons: false, cones: true, planes: false });
-        assert_eq!(kinds.to_string(), "triangles+cones");
-        let every = [PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE].map(prim);
+        let needs = Specialization::of(&scene(&[PRIM_TRIANGLE, PRIM_CONE, PRIM_TRIANGLE], 0.5));
+        let want = Specialization { spheres: false, triangles: true, polygons: false, cones: true, planes: false, secondary_rays: true };
+        assert_eq!(needs, want);
+        assert_eq!(needs.to_string(), "triangles+cones");
+        let every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
         assert_eq!(Specialization::of(&every), Specialization::ALL);
     }
 
     #[test]
+    fn matte_scenes_trace_eye_rays_only_unless_their_materials_may_change() {
+        let matte = Specialization::of(&scene(&[PRIM_SPHERE], 0.0));
+        assert!(!matte.secondary_rays);
+        assert_eq!(matte.to_string(), "spheres, eye rays only");
+        let glass = [GpuMaterial { transmit: [0.0, 0.0, 0.9], ..GpuMaterial::zeroed() }];
+        assert!(!matte.covers(&glass) && matte.covers(&[GpuMaterial::zeroed()]));
+        assert!(matte.with_secondary_rays().covers(&glass));
+    }
+
+    #[test]
     fn every_flag_is_a_wgsl_constant() {
-        let wgsl = Specialization::of(&[prim(PRIM_SPHERE)]).wgsl();
+        let wgsl = Specialization::of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
-        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES"] {
+        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SECONDARY_RAYS"] {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
     }

@@ -51,9 +51,11 @@ pub struct Canvas {
 impl Canvas {
     /// Builds the BVH, uploads `scene` for `width` × `height` and makes its texture.
     pub fn new(kernels: Arc<Kernels>, scene: &Scene, width: u32, height: u32, scene_generation: u64) -> Result<Self, GpuError> {
-        let prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
+        let mut prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
         // Progressive rendering needs the whole image on the device at once.
         prepared.buffers.check_whole_image()?;
+        // Materials are edited in place: any of them may come to reflect.
+        prepared.buffers.specialization = prepared.buffers.specialization.with_secondary_rays();
         // Here, off the UI thread: the shaded image, the debug views and picking.
         kernels.renderer.create_pipelines(&prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);

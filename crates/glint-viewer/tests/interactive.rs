@@ -182,6 +182,33 @@ fn edits_in_place_equal_a_fresh_upload() {
     assert!(renderer().write_lights(&buffers, &too_many).is_err());
 }
 
+/// A scene that reflects nothing is uploaded for eye rays only; making a
+/// material reflect in place is refused, unless the scene was uploaded with
+/// secondary rays, as the viewer uploads, and then it renders as a fresh upload.
+#[test]
+fn a_material_made_to_reflect_in_place_needs_secondary_rays() {
+    let mut matte = scene();
+    for m in &mut matte.materials {
+        m.reflect = glam::Vec3::ZERO;
+        m.transmit = glam::Vec3::ZERO;
+    }
+    let mut mirror = matte.clone();
+    mirror.materials[1].reflect = glam::Vec3::splat(0.6);
+    let materials: Vec<_> = mirror.materials.iter().map(gpu_types::pack_material).collect();
+
+    let mut buffers = upload(&matte);
+    assert!(!buffers.specialization.secondary_rays);
+    let refused = renderer().write_materials(&buffers, &materials).unwrap_err().to_string();
+    assert!(refused.contains("secondary rays"), "{refused}");
+
+    buffers.specialization = buffers.specialization.with_secondary_rays();
+    renderer().write_materials(&buffers, &materials).unwrap();
+    let options = RenderOptions::default();
+    trace_in_bands(&buffers, &options);
+    let (want, _) = renderer().render(&upload(&mirror), &options, &mut |_, _| {}).unwrap();
+    assert_eq!(resolve(&buffers, &options), want);
+}
+
 #[test]
 fn picking_finds_each_pixel_s_object_and_leaves_the_image_alone() {
     let scene = scene();
