@@ -66,19 +66,9 @@ fn decode(bytes: &[u8], format: Format) -> Result<LinearImage, String> {
 /// are one number per pixel (depth, id, heatmap): that number in R, G and B,
 /// as a greyscale PFM reads.
 fn single_channel_exr(bytes: &[u8]) -> Option<LinearImage> {
-    use exr::prelude::{ReadChannels, ReadLayers};
-    let image = exr::prelude::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .ok()?;
-    let layer = image.layer_data;
-    let [channel] = &layer.channel_data.list[..] else { return None };
-    let pixels = channel.sample_data.values_as_f32().map(|v| [v; 3]).collect();
-    Some(LinearImage { width: layer.size.width() as u32, height: layer.size.height() as u32, pixels })
+    let (width, height, channels) = glint_gpu::read_exr_channels(bytes).ok()?;
+    let [(_, values)] = &channels[..] else { return None };
+    Some(LinearImage { width, height, pixels: values.iter().map(|&v| [v; 3]).collect() })
 }
 
 fn from_rgb32f(rgb: image::Rgb32FImage, to_linear: fn(f32) -> f32) -> LinearImage {

@@ -23,10 +23,9 @@ mod tiles;
 pub use device::{old_lavapipe_warning, prefer_lavapipe_width, Gpu, ADAPTER_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
-    check_output_path, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
+    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
     OutputPathError, PngBits,
 };
-pub use pipelines::Compilation;
 pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
 pub use sink::{ImageSink, StagedImage};
 pub use tiles::Region;

@@ -237,6 +237,24 @@ pub fn read_pfm_channels(bytes: &[u8]) -> Result<(u32, u32, usize, Vec<f32>), St
     Ok((width, height, channels, values))
 }
 
+/// Reads an EXR's first layer: (width, height, each channel's name and values
+/// row by row, top row first), as `glint render` writes them (R, G and B, or
+/// one named channel).
+pub fn read_exr_channels(bytes: &[u8]) -> Result<(u32, u32, Vec<(String, Vec<f32>)>), String> {
+    use exr::prelude::{ReadChannels, ReadLayers};
+    let read = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| format!("not a readable EXR: {e}"))?;
+    let layer = read.layer_data;
+    let channels = layer.channel_data.list.iter().map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect())).collect();
+    Ok((layer.size.width() as u32, layer.size.height() as u32, channels))
+}
+
 /// Reads a PFM as colour: a greyscale file's value fills all three channels.
 /// (width, height, rgb rows top first).
 pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {

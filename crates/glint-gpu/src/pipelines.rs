@@ -1,13 +1,12 @@
 //! The kernels' compute pipelines, each created the first time something
-//! needs it, for the primitive kinds of the scene it runs on. A command creates
-//! only the pipelines it uses (each creation translates a kernel, tens of
-//! milliseconds), and a software rasteriser, which compiles a kernel to CPU
+//! needs it, for the `Specialization` of the scene it runs on. A command
+//! creates only the pipelines it uses (each creation translates a kernel, tens
+//! of milliseconds), and a software rasteriser, which compiles a kernel to CPU
 //! code when it first runs (seconds on a fresh machine), compiles only the
-//! intersection code the scene uses.
+//! code the scene needs.
 
 use std::collections::HashMap;
 use std::sync::Mutex;
-use std::time::{Duration, Instant};
 
 use glint_scene::specialization::Specialization;
 
@@ -15,22 +14,12 @@ use crate::renderer::one_line;
 use crate::shaders::{Kernel, ShaderSource};
 use crate::GpuError;
 
-/// One pipeline created, and how long its creation took. A software
-/// rasteriser compiles the kernel to CPU code later, when it first runs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Compilation {
-    pub kernel: Kernel,
-    pub specialization: Specialization,
-    pub time: Duration,
-}
-
 pub(crate) struct Pipelines {
     device: wgpu::Device,
     source: ShaderSource,
     /// The layout of the kernels bound to a scene (trace, primary).
     scene_layout: wgpu::PipelineLayout,
     built: Mutex<HashMap<(Kernel, Specialization), wgpu::ComputePipeline>>,
-    compilations: Mutex<Vec<Compilation>>,
 }
 
 impl Pipelines {
@@ -48,7 +37,6 @@ impl Pipelines {
             source: source.clone(),
             scene_layout,
             built: Mutex::new(HashMap::new()),
-            compilations: Mutex::new(Vec::new()),
         })
     }
 
@@ -61,10 +49,7 @@ impl Pipelines {
             return Ok(pipeline.clone());
         }
         let layout = matches!(kernel, Kernel::Trace | Kernel::Primary).then_some(&self.scene_layout);
-        let start = Instant::now();
         let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, layout)?;
-        let compilation = Compilation { kernel, specialization, time: start.elapsed() };
-        self.compilations.lock().unwrap_or_else(|e| e.into_inner()).push(compilation);
         self.built.lock().unwrap_or_else(|e| e.into_inner()).insert(key, pipeline.clone());
         Ok(pipeline)
     }
@@ -72,11 +57,6 @@ impl Pipelines {
     /// Creates the pipelines of `kernels` for `specialization` that do not exist yet.
     pub fn create(&self, kernels: &[Kernel], specialization: Specialization) -> Result<(), GpuError> {
         kernels.iter().try_for_each(|&kernel| self.get(kernel, specialization).map(drop))
-    }
-
-    /// Every pipeline created so far, in order.
-    pub fn compilations(&self) -> Vec<Compilation> {
-        self.compilations.lock().unwrap_or_else(|e| e.into_inner()).clone()
     }
 }
 

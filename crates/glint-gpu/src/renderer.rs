@@ -11,7 +11,7 @@ use glint_scene::gpu_types::{
 use glint_scene::specialization::Specialization;
 use wgpu::util::DeviceExt;
 
-use crate::pipelines::{Compilation, Pipelines};
+use crate::pipelines::Pipelines;
 use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::shaders::{Kernel, ShaderSource};
 use crate::tiles::Region;
@@ -190,11 +190,6 @@ impl Renderer {
     /// yet), so a shader the driver rejects fails before any work is done.
     pub fn create_pipelines(&self, scene: &SceneBuffers, kernels: &[Kernel]) -> Result<(), GpuError> {
         self.pipelines.create(kernels, scene.specialization)
-    }
-
-    /// Every pipeline created so far, with the time each took.
-    pub fn compilations(&self) -> Vec<Compilation> {
-        self.pipelines.compilations()
     }
 
     /// Uploads `scene` for rendering at `width` × `height`, checking the device's

@@ -247,37 +247,20 @@ fn decode(bytes: &[u8], format: Format) -> Result<(Image, Encoding), String> {
 
 /// An EXR as `glint render` writes them: R, G and B, or one named channel.
 fn decode_exr(bytes: &[u8]) -> Result<(Image, Channels), String> {
-    use exr::prelude::{ReadChannels, ReadLayers};
-    let read = exr::prelude::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| format!("not a readable EXR: {e}"))?;
-    let layer = read.layer_data;
-    let (width, height) = (layer.size.width() as u32, layer.size.height() as u32);
-    let channels = &layer.channel_data.list;
-    let named = |name: &str| channels.iter().find(|c| c.name.to_string() == name);
+    let (width, height, mut channels) = crate::read_exr_channels(bytes)?;
     let image = |values: Vec<[f32; 4]>| Image { width, height, display: values.clone(), linear: values };
-    if let [channel] = &channels[..] {
-        let values = channel.sample_data.values_as_f32().map(|v| [v, 0.0, 0.0, 1.0]).collect();
+    if let [(name, values)] = &channels[..] {
+        let values = values.iter().map(|&v| [v, 0.0, 0.0, 1.0]).collect();
         // The stitched file names its one channel as the parts do. `Channels`
         // holds the names Glint writes, which live for the whole program, so
         // a name read from a file is kept as long: a few bytes per part.
-        let name: &'static str = Box::leak(channel.name.to_string().into_boxed_str());
+        let name: &'static str = Box::leak(name.clone().into_boxed_str());
         return Ok((image(values), Channels::Single(name)));
     }
-    match (named("R"), named("G"), named("B")) {
-        (Some(r), Some(g), Some(b)) if channels.len() == 3 => {
-            let values = r
-                .sample_data
-                .values_as_f32()
-                .zip(g.sample_data.values_as_f32())
-                .zip(b.sample_data.values_as_f32())
-                .map(|((r, g), b)| [r, g, b, 1.0])
-                .collect();
+    let mut take = |name: &str| channels.iter().position(|(n, _)| n == name).map(|i| channels.swap_remove(i).1);
+    match (take("R"), take("G"), take("B")) {
+        (Some(r), Some(g), Some(b)) if channels.is_empty() => {
+            let values = r.iter().zip(&g).zip(&b).map(|((&r, &g), &b)| [r, g, b, 1.0]).collect();
             Ok((image(values), Channels::Rgb))
         }
         _ => Err("not an EXR as `glint render` writes (R, G and B, or one channel)".into()),
