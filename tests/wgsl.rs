@@ -114,6 +114,7 @@ fn imports_are_exactly_what_each_file_uses() {
     }
     let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL).unwrap();
     assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
+    assert!(!primary.source.contains("fn diffuse_only"), "the primary kernel carries shadow rays");
 }
 
 #[test]

@@ -1,8 +1,9 @@
-// The primary kernel: the debug views and AOVs, which need the primary ray alone.
-// A kernel of its own, without the ray tree, compiles to far leaner code than
+// The primary kernel: the data views and AOVs (depth, normal, albedo, id, BVH
+// heat map) and picking, which need the eye ray's hit alone. A kernel of its
+// own, without the ray tree or shadow rays, compiles to far leaner code than
 // the trace kernel (register and private-memory pressure), so these views and
-// picking run faster.
-// import: bindings bvh camera checker diffuse_view dispatch primitive types
+// picking run faster and compile sooner.
+// import: bindings bvh camera checker dispatch primitive types
 
 fn primary_view(eye: Ray) -> vec3<f32> {
     let hit = traverse(eye, 0.0, MISS, false, false);
@@ -19,16 +20,12 @@ fn primary_view(eye: Ray) -> vec3<f32> {
     }
     let p = prims[hit.prim];
     switch dispatch.view {
-        case VIEW_NORMAL: { return surface_at(p, eye, hit.t).geometric; }
         case VIEW_DEPTH: { return vec3<f32>(hit.t); }
         case VIEW_ALBEDO: { return material_at(p, eye.origin + hit.t * eye.dir).color; }
         // x for display and AOVs (exact up to 2^24), y the index's own bits,
         // which picking reads: exact for any number of objects.
         case VIEW_ID: { return vec3<f32>(f32(p.object), bitcast<f32>(p.object), 0.0); }
-        default: {
-            let s = surface_at(p, eye, hit.t);
-            return diffuse_only(s, material_at(p, s.point));
-        }
+        default: { return surface_at(p, eye, hit.t).geometric; }
     }
 }
 

@@ -20,12 +20,10 @@ var<private> deepest: u32;
 
 fn trace_pixel(eye: Ray) -> vec3<f32> {
     var stack: array<PendingRay, RAY_STACK>;
-    stack[0] = PendingRay(eye, vec3<f32>(1.0), 1u, RAY_EYE, NO_RAY);
-    var top = 1u;
+    var top = 0u;
+    var pending = PendingRay(eye, vec3<f32>(1.0), 1u, RAY_EYE, NO_RAY);
     var color = vec3<f32>(0.0);
-    while top > 0u {
-        top--;
-        let pending = stack[top];
+    loop {
         let ray = pending.ray;
         let hit = traverse(ray, 0.0, MISS, false, false);
         deepest = max(deepest, pending.depth);
@@ -96,6 +94,16 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             let r = Ray(s.point - s.geometric * eps, refracted.xyz);
             stack[top] = PendingRay(r, w_refract, pending.depth + 1u, RAY_REFRACT, id);
             top++;
+        }
+        continuing {
+            // Without secondary rays the tree is the eye ray alone, and the
+            // kernel compiles without the stack (a sixth less to compile).
+            let done = !HAS_SECONDARY_RAYS || top == 0u;
+            if !done {
+                top--;
+                pending = stack[top];
+            }
+            break if done;
         }
     }
     return color;

@@ -11,6 +11,8 @@ fn light_visibility(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>,
     count_ray(STAT_SHADOW);
     let eps = ray_epsilon(point);
     let ray = Ray(point + geometric * eps, to_light);
-    let tinted = (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
+    // Only transmitters tint: a scene without them (HAS_SECONDARY_RAYS false)
+    // compiles the opaque test alone.
+    let tinted = HAS_SECONDARY_RAYS && (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
     return traverse(ray, 0.0, distance - eps, true, tinted);
 }

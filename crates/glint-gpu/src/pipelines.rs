@@ -48,7 +48,7 @@ impl Pipelines {
         if let Some(pipeline) = self.built.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
             return Ok(pipeline.clone());
         }
-        let layout = matches!(kernel, Kernel::Trace | Kernel::Primary).then_some(&self.scene_layout);
+        let layout = matches!(kernel, Kernel::Trace | Kernel::Primary | Kernel::Diffuse).then_some(&self.scene_layout);
         let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, layout)?;
         self.built.lock().unwrap_or_else(|e| e.into_inner()).insert(key, pipeline.clone());
         Ok(pipeline)

@@ -585,10 +585,10 @@ fn check_region(scene: &SceneBuffers, region: Region) -> Result<(), GpuError> {
 
 /// The kernel that traces `view`.
 fn kernel_for(view: View) -> Kernel {
-    if view.is_primary_only() {
-        Kernel::Primary
-    } else {
-        Kernel::Trace
+    match view {
+        View::Diffuse => Kernel::Diffuse,
+        _ if view.is_primary_only() => Kernel::Primary,
+        _ => Kernel::Trace,
     }
 }
 

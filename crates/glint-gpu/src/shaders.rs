@@ -29,6 +29,7 @@ macro_rules! sources {
 sources![
     "kernels/trace.wgsl",
     "kernels/primary.wgsl",
+    "kernels/diffuse.wgsl",
     "kernels/resolve.wgsl",
     "kernels/present.wgsl",
     "kernels/probe.wgsl",
@@ -60,8 +61,10 @@ sources![
 pub enum Kernel {
     /// The full Whitted render.
     Trace,
-    /// The primary ray alone: debug views, AOVs, picking.
+    /// The eye ray's hit alone: the data views, AOVs, picking.
     Primary,
+    /// The diffuse debug view: the eye ray's hit and its shadow rays.
+    Diffuse,
     /// Accumulated samples to display values, for read-back.
     Resolve,
     /// The same, into the viewer's texture.
@@ -71,12 +74,14 @@ pub enum Kernel {
 }
 
 impl Kernel {
-    pub const ALL: [Kernel; 5] = [Kernel::Trace, Kernel::Primary, Kernel::Resolve, Kernel::Present, Kernel::Probe];
+    pub const ALL: [Kernel; 6] =
+        [Kernel::Trace, Kernel::Primary, Kernel::Diffuse, Kernel::Resolve, Kernel::Present, Kernel::Probe];
 
     pub fn file(self) -> &'static str {
         match self {
             Kernel::Trace => "kernels/trace.wgsl",
             Kernel::Primary => "kernels/primary.wgsl",
+            Kernel::Diffuse => "kernels/diffuse.wgsl",
             Kernel::Resolve => "kernels/resolve.wgsl",
             Kernel::Present => "kernels/present.wgsl",
             Kernel::Probe => "kernels/probe.wgsl",
@@ -87,13 +92,14 @@ impl Kernel {
     /// the `Specialization` it is composed for (tests/wgsl.rs checks this
     /// against the files it is made of).
     pub fn is_specialised(self) -> bool {
-        matches!(self, Kernel::Trace | Kernel::Primary | Kernel::Probe)
+        matches!(self, Kernel::Trace | Kernel::Primary | Kernel::Diffuse | Kernel::Probe)
     }
 
     pub fn entry_point(self) -> &'static str {
         match self {
             Kernel::Trace => "trace_main",
             Kernel::Primary => "primary_main",
+            Kernel::Diffuse => "diffuse_main",
             Kernel::Resolve => "resolve_main",
             Kernel::Present => "present_main",
             Kernel::Probe => "probe_main",

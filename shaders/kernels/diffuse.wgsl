@@ -1,0 +1,28 @@
+// The diffuse kernel: the `diffuse` debug view, direct diffuse light alone. A
+// kernel apart from the primary one because its shadow rays are a second BVH
+// traversal: compiled into the primary kernel it more than doubled the
+// software rasteriser's compile of every data view (depth, normal, id…).
+// import: bindings bvh camera checker diffuse_view dispatch primitive
+
+@compute @workgroup_size(8, 8)
+fn diffuse_main(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+) {
+    let pixel = band_pixel(gid);
+    if in_band(pixel) {
+        // The pixel centre, like the data views: the view is not averaged.
+        let eye = camera_ray(vec2<f32>(pixel) + 0.5);
+        let hit = traverse(eye, 0.0, MISS, false, false);
+        count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
+        var color = vec3<f32>(0.0);
+        if hit.t != MISS {
+            let p = prims[hit.prim];
+            let s = surface_at(p, eye, hit.t);
+            color = diffuse_only(s, material_at(p, s.point));
+        }
+        accumulate(pixel, color);
+    }
+    flush_ray_counts(wid, groups);
+}
