@@ -5,7 +5,8 @@
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
 @group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
 @group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
-@group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
+// A uniform buffer: see MAX_LIGHTS in gpu_types.rs.
+@group(0) @binding(4) var<uniform> lights: array<GpuLight, MAX_LIGHTS>;
 // Polygon vertices and triangle vertex normals (xyz).
 @group(0) @binding(5) var<storage, read> points: array<vec4<f32>>;
 // Running sum of samples per pixel: rgb and the sample count in w.

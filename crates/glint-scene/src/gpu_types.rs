@@ -101,6 +101,12 @@ shared_constants! {
     /// The distance of a ray that hits nothing, and the depth view's value there.
     MISS: f32 = 3.4e38;
 
+    /// The lights a scene may have on: the kernels read them from a uniform
+    /// buffer of the 64 KiB every device binds, where a software rasteriser
+    /// loads per lane without branches (from a storage buffer each lane's
+    /// load is a branch of its own), which also compiles to less code.
+    MAX_LIGHTS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>()) as u32;
+
     /// The trace kernel's stack of pending rays: each level of the deepest
     /// tree leaves at most one sibling waiting.
     RAY_STACK: u32 = MAX_DEPTH_LIMIT + 1;
@@ -242,6 +248,9 @@ pub struct DispatchParams {
     pub tile_y: u32,
     pub tile_width: u32,
 }
+
+/// The size of a uniform buffer every device binds (WebGPU's minimum limit).
+pub const UNIFORM_ARRAY_BYTES: usize = 64 << 10;
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -479,9 +488,8 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
     }
     let mut lights: Vec<GpuLight> = scene.lights.iter().filter(|l| l.enabled).map(pack_light).collect();
     let light_count = lights.len() as u32;
-    if lights.is_empty() {
-        lights.push(Zeroable::zeroed());
-    }
+    // The kernels bind the whole array (MAX_LIGHTS).
+    lights.resize(MAX_LIGHTS as usize, Zeroable::zeroed());
     GpuScene { prims, nodes: bvh.nodes, grids: bvh.grids, bvh_root: bvh.root, materials, lights, points, light_count }
 }
 

@@ -5,7 +5,7 @@
 
 use crate::bvh::Bvh;
 use crate::gpu_bvh::MAX_NODES;
-use crate::gpu_types::{BVH_STACK, RAY_STACK};
+use crate::gpu_types::{BVH_STACK, MAX_LIGHTS, RAY_STACK};
 use crate::{Scene, Shape};
 
 /// Materials are indexed by the 24 bits above a primitive's kind.
@@ -45,6 +45,10 @@ impl Scene {
             if m.checker.is_some_and(|c| !(c.size > 0.0 && c.size.is_finite())) {
                 return Err(Invalid::CheckerSize { material });
             }
+        }
+        // Every light, on or off: the viewer turns them on in place.
+        if self.lights.len() > MAX_LIGHTS as usize {
+            return Err(Invalid::TooMany { what: "lights", count: self.lights.len(), max: MAX_LIGHTS as usize });
         }
         let object_limit = u32::MAX as usize;
         if self.objects.len() > object_limit {
@@ -145,6 +149,19 @@ mod tests {
             s.render.max_depth = depth;
             assert_eq!(s.validate(), Err(Invalid::MaxDepth(depth)));
         }
+        let light = crate::Light {
+            kind: crate::LightKind::Point { position: Vec3::Y },
+            color: Vec3::ONE,
+            intensity: 1.0,
+            attenuation: crate::Attenuation::None,
+            enabled: false,
+        };
+        let mut lit = scene(vec![sphere(0)], 1);
+        lit.lights = vec![light; MAX_LIGHTS as usize];
+        assert_eq!(lit.validate(), Ok(()));
+        lit.lights.push(light);
+        let too_many = Invalid::TooMany { what: "lights", count: MAX_LIGHTS as usize + 1, max: MAX_LIGHTS as usize };
+        assert_eq!(lit.validate(), Err(too_many), "lights count whether on or off");
         let message = Invalid::MaterialIndex { object: 1, material: 2, count: 2 }.to_string();
         assert_eq!(message, "object 1 uses material 2, but the scene has 2 materials");
     }

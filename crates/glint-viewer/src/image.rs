@@ -11,16 +11,13 @@ use egui::{Pos2, Rect, Vec2};
 use glam::Vec3;
 use glint_gpu::{GpuError, PngBits};
 use glint_scene::gpu_types;
-use glint_scene::{Attenuation, Camera, Light, LightKind};
+use glint_scene::Camera;
 
 use crate::app::one_line;
 use crate::document::LoadedScene;
 use crate::engine::{Accumulation, Canvas, Kernels, Step};
 use crate::jobs::{Job, Jobs};
 use crate::settings::{Settings, SpecularChoice};
-
-/// Extra room in the lights buffer, so adding a light rarely needs a new upload.
-const SPARE_LIGHTS: usize = 4;
 
 /// What a canvas was made for; a canvas whose key differs is out of date.
 #[derive(Clone, PartialEq)]
@@ -139,7 +136,7 @@ impl TracedImage {
             kernels: Arc::as_ptr(kernels) as usize,
             scene_generation: doc.generation,
             size,
-            lights: doc.scene.lights.len() + SPARE_LIGHTS,
+            lights: doc.scene.lights.len(),
         })
     }
 
@@ -163,19 +160,9 @@ impl TracedImage {
                 return;
             }
         }
-        let mut snapshot = doc.scene.clone();
-        // Room for every light, on or off, and a few more.
-        for l in &mut snapshot.lights {
-            l.enabled = true;
-        }
-        let spare = Light {
-            kind: LightKind::Point { position: Vec3::ZERO },
-            color: Vec3::ZERO,
-            intensity: 0.0,
-            attenuation: Attenuation::None,
-            enabled: true,
-        };
-        snapshot.lights.resize(key.lights, spare);
+        // The device holds room for every light the scene may have
+        // (gpu_types::MAX_LIGHTS), so lights turned on later fit in place.
+        let snapshot = doc.scene.clone();
         let kernels = Arc::clone(kernels);
         self.preparing = true;
         let job_key = key.clone();
