@@ -4,8 +4,10 @@
 mod support;
 
 use glam::DVec3;
+use glint_gpu::{Acceleration, RenderOptions};
+use glint_scene::gpu_types::View;
 use glint_scene::Ray;
-use support::{assert_close, parse, render};
+use support::{assert_close, parse, render, render_options};
 
 const HEADER: &str = r#"
 [image]
@@ -205,4 +207,78 @@ fn cameras_put_world_points_at_the_computed_pixel() {
             assert!(lit.len() <= 4, "{camera}: a tiny sphere lit {lit:?}");
         }
     }
+}
+
+/// The diffuse view (a kernel of its own) is Lambert's term alone, with the
+/// inverse-square falloff and hard shadows: k_d·O_d·I_l·max(0, N·L)·V/d², no
+/// ambient and no highlight, whatever the scene's material says.
+#[test]
+fn the_diffuse_view_is_lamberts_term_alone() {
+    let scene = parse(&format!(
+        r#"{HEADER}
+[ambient]
+color = [1, 1, 1]
+intensity = 0.5
+[[light]]
+type = "point"
+position = [1, 6, 2]
+color = [0.9, 0.8, 0.7]
+[material.floor]
+color = [0.4, 0.8, 0.6]
+ka = 0.5
+kd = 0.7
+ks = 0.4
+shininess = 8
+[[object]]
+type = "polygon"
+vertices = [[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4]]
+material = "floor"
+[[object]]
+type = "sphere"
+center = [0, 1.5, 0]
+radius = 0.7
+material = "floor"
+"#
+    ));
+    let options = RenderOptions { view: View::Diffuse, ..RenderOptions::default() };
+    let (image, _) = render_options(&scene, Acceleration::Bvh, options);
+    let (sphere, light) = (DVec3::new(0.0, 1.5, 0.0), DVec3::new(1.0, 6.0, 2.0));
+    let lambert = |p: DVec3, n: DVec3| {
+        let to_light = light - p;
+        let cosine = n.dot(to_light.normalize()).max(0.0);
+        0.7 * DVec3::new(0.4, 0.8, 0.6) * DVec3::new(0.9, 0.8, 0.7) * cosine / to_light.length_squared()
+    };
+    let (mut shadowed, mut lit, mut on_sphere) = (0, 0, 0);
+    for y in 0..72 {
+        for x in 0..96 {
+            let ray = scene.camera.ray(96, 72, f64::from(x) + 0.5, f64::from(y) + 0.5).unwrap();
+            let what = format!("pixel ({x}, {y})");
+            if let Some(t) = hit_sphere(&ray, sphere, 0.7) {
+                let p = ray.origin + t * ray.direction;
+                if hit_sphere(&ray, sphere, 0.69).is_some() {
+                    assert_close(image.linear_at(x, y), lambert(p, (p - sphere).normalize()).to_array(), 1e-4, &what);
+                    on_sphere += 1;
+                }
+                continue;
+            }
+            if ray.direction.y >= 0.0 {
+                continue;
+            }
+            let t = -ray.origin.y / ray.direction.y;
+            let p = ray.origin + t * ray.direction;
+            if p.x.abs() > 3.9 || p.z.abs() > 3.9 || hit_sphere(&ray, sphere, 0.75).is_some() {
+                continue;
+            }
+            let to_light = Ray { origin: p, direction: (light - p).normalize() };
+            // Away from the shadow's edge: classified with a margin.
+            if hit_sphere(&to_light, sphere, 0.65).is_some() {
+                assert_close(image.linear_at(x, y), [0.0; 3], 0.0, &what);
+                shadowed += 1;
+            } else if hit_sphere(&to_light, sphere, 0.75).is_none() {
+                assert_close(image.linear_at(x, y), lambert(p, DVec3::Y).to_array(), 1e-4, &what);
+                lit += 1;
+            }
+        }
+    }
+    assert!(shadowed > 20 && lit > 200 && on_sphere > 100, "shadowed {shadowed}, lit {lit}, on the sphere {on_sphere}");
 }
