@@ -113,11 +113,60 @@ material = "m"
     assert_eq!(checked, 6);
 }
 
+/// A floor polygon at y = 0 under a sphere (centre (0, 1.5, 0), radius 0.7),
+/// both of the material `floor`, which `setting` defines (TOML: ambient,
+/// lights and materials).
+fn floor_and_sphere(setting: &str) -> glint_scene::Scene {
+    parse(&format!(
+        r#"{HEADER}
+{setting}
+[[object]]
+type = "polygon"
+vertices = [[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4]]
+material = "floor"
+[[object]]
+type = "sphere"
+center = [0, 1.5, 0]
+radius = 0.7
+material = "floor"
+"#
+    ))
+}
+
+const SPHERE: DVec3 = DVec3::new(0.0, 1.5, 0.0);
+
+/// Where on the floor of `floor_and_sphere` each pixel's eye ray lands, and
+/// whether the sphere hides `light` from there, for the pixels that see the
+/// floor well inside its edges and away from the shadow's edge (classified
+/// with a margin, the shadow being penumbra-free).
+fn floor_pixels(scene: &glint_scene::Scene, light: DVec3) -> Vec<(u32, u32, DVec3, bool)> {
+    let mut pixels = Vec::new();
+    for y in 0..72 {
+        for x in 0..96 {
+            let ray = scene.camera.ray(96, 72, f64::from(x) + 0.5, f64::from(y) + 0.5).unwrap();
+            if hit_sphere(&ray, SPHERE, 0.75).is_some() || ray.direction.y >= 0.0 {
+                continue; // the sphere itself, its rim, or sky
+            }
+            let p = ray.origin - ray.origin.y / ray.direction.y * ray.direction;
+            if p.x.abs() > 3.9 || p.z.abs() > 3.9 {
+                continue;
+            }
+            let to_light = Ray { origin: p, direction: (light - p).normalize() };
+            if hit_sphere(&to_light, SPHERE, 0.65).is_some() {
+                pixels.push((x, y, p, true));
+            } else if hit_sphere(&to_light, SPHERE, 0.75).is_none() {
+                pixels.push((x, y, p, false));
+            }
+        }
+    }
+    pixels
+}
+
 #[test]
 fn pixel_in_shadow_is_the_ambient_term() {
-    // A floor polygon at y = 0 under a sphere, lit from straight above.
-    let scene = parse(&format!(
-        r#"{HEADER}
+    // Lit from straight above.
+    let scene = floor_and_sphere(
+        r#"
 [ambient]
 color = [1, 1, 1]
 intensity = 0.25
@@ -129,43 +178,18 @@ color = [0.4, 0.8, 0.6]
 ka = 0.5
 kd = 0.7
 ks = 0
-[[object]]
-type = "polygon"
-vertices = [[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4]]
-material = "floor"
-[[object]]
-type = "sphere"
-center = [0, 1.5, 0]
-radius = 0.7
-"#
-    ));
+"#,
+    );
     let (image, _) = render(&scene);
-    let sphere = DVec3::new(0.0, 1.5, 0.0);
-    let light = DVec3::new(0.0, 8.0, 0.0);
     let ambient = [0.5 * 0.25 * 0.4, 0.5 * 0.25 * 0.8, 0.5 * 0.25 * 0.6];
     let (mut shadowed, mut lit) = (0, 0);
-    for y in 0..72 {
-        for x in 0..96 {
-            let ray = scene.camera.ray(96, 72, f64::from(x) + 0.5, f64::from(y) + 0.5).unwrap();
-            if hit_sphere(&ray, sphere, 0.75).is_some() || ray.direction.y >= 0.0 {
-                continue; // the sphere itself, its rim, or sky
-            }
-            let t = -ray.origin.y / ray.direction.y;
-            let p = ray.origin + t * ray.direction;
-            if p.x.abs() > 3.9 || p.z.abs() > 3.9 {
-                continue;
-            }
-            let to_light = Ray { origin: p, direction: (light - p).normalize() };
-            // Keep clear of the penumbra-free shadow's edge: classify with a margin.
-            let blocked_core = hit_sphere(&to_light, sphere, 0.65).is_some();
-            let blocked_any = hit_sphere(&to_light, sphere, 0.75).is_some();
-            if blocked_core {
-                assert_close(image.linear_at(x, y), ambient, 1.0 / 255.0, &format!("shadowed ({x}, {y})"));
-                shadowed += 1;
-            } else if !blocked_any {
-                assert!(image.linear_at(x, y)[1] > ambient[1] as f32 + 0.05, "({x}, {y}) should be lit");
-                lit += 1;
-            }
+    for (x, y, _, blocked) in floor_pixels(&scene, DVec3::new(0.0, 8.0, 0.0)) {
+        if blocked {
+            assert_close(image.linear_at(x, y), ambient, 1.0 / 255.0, &format!("shadowed ({x}, {y})"));
+            shadowed += 1;
+        } else {
+            assert!(image.linear_at(x, y)[1] > ambient[1] as f32 + 0.05, "({x}, {y}) should be lit");
+            lit += 1;
         }
     }
     assert!(shadowed > 20 && lit > 200, "shadowed {shadowed}, lit {lit}");
@@ -214,8 +238,8 @@ fn cameras_put_world_points_at_the_computed_pixel() {
 /// ambient and no highlight, whatever the scene's material says.
 #[test]
 fn the_diffuse_view_is_lamberts_term_alone() {
-    let scene = parse(&format!(
-        r#"{HEADER}
+    let scene = floor_and_sphere(
+        r#"
 [ambient]
 color = [1, 1, 1]
 intensity = 0.5
@@ -229,54 +253,31 @@ ka = 0.5
 kd = 0.7
 ks = 0.4
 shininess = 8
-[[object]]
-type = "polygon"
-vertices = [[-4, 0, -4], [4, 0, -4], [4, 0, 4], [-4, 0, 4]]
-material = "floor"
-[[object]]
-type = "sphere"
-center = [0, 1.5, 0]
-radius = 0.7
-material = "floor"
-"#
-    ));
+"#,
+    );
     let options = RenderOptions { view: View::Diffuse, ..RenderOptions::default() };
     let (image, _) = render_options(&scene, Acceleration::Bvh, options);
-    let (sphere, light) = (DVec3::new(0.0, 1.5, 0.0), DVec3::new(1.0, 6.0, 2.0));
+    let light = DVec3::new(1.0, 6.0, 2.0);
     let lambert = |p: DVec3, n: DVec3| {
         let to_light = light - p;
         let cosine = n.dot(to_light.normalize()).max(0.0);
         0.7 * DVec3::new(0.4, 0.8, 0.6) * DVec3::new(0.9, 0.8, 0.7) * cosine / to_light.length_squared()
     };
-    let (mut shadowed, mut lit, mut on_sphere) = (0, 0, 0);
+    let (mut shadowed, mut lit) = (0, 0);
+    for (x, y, p, blocked) in floor_pixels(&scene, light) {
+        let want = if blocked { DVec3::ZERO } else { lambert(p, DVec3::Y) };
+        assert_close(image.linear_at(x, y), want.to_array(), 1e-4, &format!("floor pixel ({x}, {y})"));
+        *(if blocked { &mut shadowed } else { &mut lit }) += 1;
+    }
+    let mut on_sphere = 0;
     for y in 0..72 {
         for x in 0..96 {
             let ray = scene.camera.ray(96, 72, f64::from(x) + 0.5, f64::from(y) + 0.5).unwrap();
-            let what = format!("pixel ({x}, {y})");
-            if let Some(t) = hit_sphere(&ray, sphere, 0.7) {
+            // Inside the silhouette, clear of its rim.
+            if let (Some(t), Some(_)) = (hit_sphere(&ray, SPHERE, 0.7), hit_sphere(&ray, SPHERE, 0.69)) {
                 let p = ray.origin + t * ray.direction;
-                if hit_sphere(&ray, sphere, 0.69).is_some() {
-                    assert_close(image.linear_at(x, y), lambert(p, (p - sphere).normalize()).to_array(), 1e-4, &what);
-                    on_sphere += 1;
-                }
-                continue;
-            }
-            if ray.direction.y >= 0.0 {
-                continue;
-            }
-            let t = -ray.origin.y / ray.direction.y;
-            let p = ray.origin + t * ray.direction;
-            if p.x.abs() > 3.9 || p.z.abs() > 3.9 || hit_sphere(&ray, sphere, 0.75).is_some() {
-                continue;
-            }
-            let to_light = Ray { origin: p, direction: (light - p).normalize() };
-            // Away from the shadow's edge: classified with a margin.
-            if hit_sphere(&to_light, sphere, 0.65).is_some() {
-                assert_close(image.linear_at(x, y), [0.0; 3], 0.0, &what);
-                shadowed += 1;
-            } else if hit_sphere(&to_light, sphere, 0.75).is_none() {
-                assert_close(image.linear_at(x, y), lambert(p, DVec3::Y).to_array(), 1e-4, &what);
-                lit += 1;
+                assert_close(image.linear_at(x, y), lambert(p, (p - SPHERE).normalize()).to_array(), 1e-4, &format!("sphere pixel ({x}, {y})"));
+                on_sphere += 1;
             }
         }
     }
