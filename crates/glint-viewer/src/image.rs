@@ -25,7 +25,6 @@ pub(crate) struct CanvasKey {
     kernels: usize,
     scene_generation: u64,
     size: (u32, u32),
-    lights: usize,
 }
 
 pub(crate) struct TracedImage {
@@ -136,12 +135,12 @@ impl TracedImage {
             kernels: Arc::as_ptr(kernels) as usize,
             scene_generation: doc.generation,
             size,
-            lights: doc.scene.lights.len(),
         })
     }
 
-    /// Starts building a new canvas when the size, scene or kernels changed, or
-    /// the lights outgrew the room uploaded for them.
+    /// Starts building a new canvas when the size, scene or kernels changed.
+    /// Lights need none: the device holds room for as many as a scene may
+    /// have (gpu_types::MAX_LIGHTS), and the viewer turns them on in place.
     pub fn ensure_canvas(&mut self, kernels: Option<&Arc<Kernels>>, doc: Option<&LoadedScene>, jobs: &Jobs<Job>) {
         if self.preparing {
             return;
@@ -151,17 +150,10 @@ impl TracedImage {
             return;
         }
         if let Some(c) = &self.canvas {
-            let enabled = doc.scene.lights.iter().filter(|l| l.enabled).count();
-            if Arc::ptr_eq(&c.kernels, kernels)
-                && c.scene_generation == doc.generation
-                && c.size() == key.size
-                && c.prepared.buffers.light_capacity() >= enabled
-            {
+            if Arc::ptr_eq(&c.kernels, kernels) && c.scene_generation == doc.generation && c.size() == key.size {
                 return;
             }
         }
-        // The device holds room for every light the scene may have
-        // (gpu_types::MAX_LIGHTS), so lights turned on later fit in place.
         let snapshot = doc.scene.clone();
         let kernels = Arc::clone(kernels);
         self.preparing = true;
@@ -208,15 +200,13 @@ impl TracedImage {
     }
 
     /// Writes the edited scene into the canvas and starts accumulating anew.
-    /// False when the lights no longer fit (a new canvas is on its way).
+    /// False when there is no canvas yet; more lights than the device holds
+    /// are an error.
     fn sync(&mut self, doc: &LoadedScene, specular: SpecularChoice) -> Result<bool, GpuError> {
         let Some(canvas) = &mut self.canvas else { return Ok(false) };
         let scene = &doc.scene;
         let materials: Vec<_> = scene.materials.iter().map(|m| gpu_types::pack_material(&specular.apply(m))).collect();
         let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
-        if lights.len() > canvas.prepared.buffers.light_capacity() {
-            return Ok(false);
-        }
         let renderer = &canvas.kernels.renderer;
         renderer.write_materials(&canvas.prepared.buffers, &materials)?;
         let buffers = &canvas.prepared.buffers;
