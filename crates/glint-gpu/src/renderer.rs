@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use glint_scene::gpu_types::{
-    DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
+    DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
     STAT_REFRACT, STAT_SHADOW, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
 };
 use glint_scene::specialization::Specialization;
@@ -99,10 +99,8 @@ impl std::ops::Add for RayStats {
     }
 }
 
-/// Slots of ray counters in the stats buffer (one per workgroup, modulo this).
-const STAT_SLOTS: u64 = 1024;
 /// Size of the stats buffer.
-pub(crate) const STAT_BYTES: u64 = STAT_SLOTS * STAT_COUNT as u64 * 4;
+pub(crate) const STAT_BYTES: u64 = STAT_SLOTS as u64 * STAT_COUNT as u64 * 4;
 /// Bytes of one accumulated pixel (rgb sum and sample count), and of one
 /// resolved pixel of each image read back.
 const PIXEL_BYTES: u64 = 16;
@@ -379,9 +377,7 @@ impl Renderer {
         options: &RenderOptions,
         progress: &mut dyn FnMut(u64),
     ) -> Result<RayStats, GpuError> {
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        encoder.clear_buffer(&scene.accum, 0, None);
-        self.queue.submit([encoder.finish()]);
+        // No clear: the first sample writes every pixel of the tile.
         let mut stats = RayStats::default();
         for sample in 0..options.spp {
             let done = u64::from(sample) * tile.pixels();

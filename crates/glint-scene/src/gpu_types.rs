@@ -97,6 +97,10 @@ shared_constants! {
     STAT_REFLECT: u32 = 3;
     STAT_REFRACT: u32 = 4;
     STAT_COUNT: u32 = 5;
+    /// Slots of counters in the stats buffer, one per workgroup modulo this:
+    /// a power of two, so the kernels take the modulo with a mask (an
+    /// integer division is one per lane on a software rasteriser).
+    STAT_SLOTS: u32 = 1024;
 
     /// The distance of a ray that hits nothing, and the depth view's value there.
     MISS: f32 = 3.4e38;
@@ -134,6 +138,8 @@ shared_constants! {
     PROBE_SHADOW_TRACED: u32 = 4;
     PROBE_BLOCKED: u32 = 8;
 }
+
+const _: () = assert!(STAT_SLOTS.is_power_of_two(), "flush_ray_counts takes the slot with a mask");
 
 /// What the trace kernel writes per pixel; mirrored by the VIEW_ constants in
 /// shaders/types.wgsl.
