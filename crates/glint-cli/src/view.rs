@@ -1,8 +1,10 @@
 //! `glint view`: the interactive viewer.
 
 use std::path::PathBuf;
+use std::time::Instant;
 
 use clap::Args;
+use glint_viewer::{FirstImage, FirstImageWatch};
 
 use crate::{exit, Failure};
 
@@ -19,6 +21,10 @@ pub struct ViewArgs {
     /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]; default: the showcase, built in
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: Option<PathBuf>,
+    /// Close once the first complete image is on screen and print how long it
+    /// took from the start (window, scene, kernels compiled, one sample per pixel)
+    #[arg(long)]
+    first_image: bool,
 }
 
 /// Why no window can be opened here, when that is clear before trying: on
@@ -39,6 +45,7 @@ desktop, or under `xvfb-run glint view`; `glint render` needs no display"
 }
 
 pub fn run(args: ViewArgs) -> Result<(), Failure> {
+    let start = Instant::now();
     if let Some(message) = missing_display() {
         return Err(Failure::new(exit::NO_DISPLAY, message));
     }
@@ -46,10 +53,21 @@ pub fn run(args: ViewArgs) -> Result<(), Failure> {
         Some(path) => glint_viewer::Scene::File(path),
         None => glint_viewer::Scene::BuiltIn { name: DEFAULT_NAME.into(), text: DEFAULT_SCENE },
     };
-    glint_viewer::run_scene(scene).map_err(|e| match e {
+    let watch = args.first_image.then(|| FirstImageWatch::new(start));
+    glint_viewer::run_scene(scene, watch.clone()).map_err(|e| match e {
         glint_viewer::RunError::NoDisplay(message) => Failure::new(exit::NO_DISPLAY, message),
         glint_viewer::RunError::Failed(e) => Failure::new(exit::GPU, e),
-    })
+    })?;
+    match watch.map(|w| w.outcome()) {
+        None => Ok(()),
+        Some(Some(FirstImage::Shown(took))) => {
+            println!("first image after {:.2} s", took.as_secs_f64());
+            Ok(())
+        }
+        Some(Some(FirstImage::SceneError(e))) => Err(Failure::new(exit::INPUT, e)),
+        Some(Some(FirstImage::Failed(e))) => Err(Failure::new(exit::GPU, e)),
+        Some(None) => Err(Failure::new(exit::GPU, "the window was closed before the first image was shown")),
+    }
 }
 
 #[cfg(test)]

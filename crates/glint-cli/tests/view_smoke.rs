@@ -142,3 +142,65 @@ fn the_viewer_renders_under_xvfb_and_closes_cleanly() {
     assert!(status.success(), "glint view exited with {status}: {stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+/// `glint view --first-image FILE` under Xvfb, in its own process group.
+fn first_image(scene: &Path) -> std::process::Output {
+    let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
+    let child = Command::new("xvfb-run")
+        .args(["-a", "-s", &screen])
+        .arg(env!("CARGO_BIN_EXE_glint"))
+        .args(["view", "--first-image"])
+        .arg(scene)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .process_group(0)
+        .spawn()
+        .expect("xvfb-run must be installed (bash .ci/setup installs it)");
+    let mut group = Group(child);
+    let (stdout, stderr) = (group.0.stdout.take().unwrap(), group.0.stderr.take().unwrap());
+    let read = |mut pipe: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let _ = pipe.read_to_end(&mut bytes);
+            bytes
+        })
+    };
+    let (stdout, stderr) = (read(Box::new(stdout)), read(Box::new(stderr)));
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = group.0.try_wait().unwrap() {
+            break status;
+        }
+        assert!(start.elapsed() < Duration::from_secs(180), "glint view --first-image did not exit");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    std::process::Output { status, stdout: stdout.join().unwrap(), stderr: stderr.join().unwrap() }
+}
+
+#[test]
+fn first_image_reports_the_start_up_and_closes_the_window() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/first.toml");
+    let out = first_image(&scene);
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{}: {stderr}", out.status);
+    let seconds: f64 = stdout
+        .trim()
+        .strip_prefix("first image after ")
+        .and_then(|s| s.strip_suffix(" s"))
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("expected `first image after N s`, got {stdout:?}"));
+    assert!(seconds > 0.0, "{stdout}");
+}
+
+#[test]
+fn first_image_of_a_broken_scene_is_its_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("broken.toml");
+    std::fs::write(&scene, "[camera]\neye = [0, 1\n").unwrap();
+    let out = first_image(&scene);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stderr}");
+    assert!(stderr.contains("broken.toml:2"), "the error names the file and line: {stderr}");
+    assert!(out.stdout.is_empty(), "no time for an image never shown: {}", String::from_utf8_lossy(&out.stdout));
+}

@@ -14,6 +14,7 @@ use glint_scene::MAX_IMAGE_SIDE;
 use glint_scene::{LoadError, Scene};
 
 use crate::document::{Document, LoadedScene};
+use crate::first_image::FirstImageWatch;
 use crate::image::TracedImage;
 use crate::inspector::Inspector;
 use crate::jobs::{Job, Jobs};
@@ -29,6 +30,8 @@ pub struct ViewerOptions {
     /// The TOML text of `scene` when it is built into the program rather than
     /// read from disk (`scene` then only names it, and is not watched).
     pub scene_text: Option<&'static str>,
+    /// Close once the first complete image is shown, recording when.
+    pub first_image: Option<FirstImageWatch>,
 }
 
 impl ViewerOptions {
@@ -37,7 +40,7 @@ impl ViewerOptions {
     pub fn new(scene: Option<PathBuf>) -> Self {
         let dir = ShaderSource::source_dir();
         let shaders = if dir.is_dir() { ShaderSource::Dir(dir) } else { ShaderSource::Embedded };
-        Self { scene, shaders, scene_text: None }
+        Self { scene, shaders, scene_text: None, first_image: None }
     }
 }
 
@@ -97,6 +100,7 @@ pub struct ViewerApp {
     /// warning (message, is a problem).
     pub(crate) notice: Option<(String, bool)>,
     pub(crate) errors: Errors,
+    first_image: Option<FirstImageWatch>,
 }
 
 impl ViewerApp {
@@ -127,6 +131,7 @@ impl ViewerApp {
             inspector: Inspector::default(),
             notice: glint_gpu::old_lavapipe_warning(&info).map(|warning| (warning, true)),
             errors: Errors::default(),
+            first_image: options.first_image,
         };
         app.shaders.start_compile(&app.jobs);
         match (options.scene, options.scene_text) {
@@ -275,6 +280,19 @@ impl ViewerApp {
         }
     }
 
+    fn watch_first_image(&mut self, ctx: &egui::Context) {
+        let Some(watch) = &self.first_image else { return };
+        let others: Vec<String> = [&self.errors.shader, &self.errors.gpu].into_iter().flatten().cloned().collect();
+        let shown = || {
+            let done = self.image.is_converged(self.document.loaded.as_ref(), 1);
+            // Converged means submitted: the image is there once the device is done.
+            done && self.device.poll(wgpu::PollType::wait_indefinitely()).is_ok()
+        };
+        if watch.check(self.errors.scene.as_ref(), &others, shown) {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+
     fn status_bar(&self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             let mut parts = Vec::new();
@@ -335,5 +353,6 @@ impl eframe::App for ViewerApp {
         self.image.render(&ctx, doc, &self.settings, &mut self.errors.gpu);
         // After the render, which writes edits into the canvas the probe reads.
         self.inspector.update(&self.image, doc, &self.jobs, &mut self.errors.gpu);
+        self.watch_first_image(&ctx);
     }
 }

@@ -14,6 +14,7 @@ mod app;
 mod camera_control;
 mod document;
 mod engine;
+mod first_image;
 mod image;
 mod inspector;
 mod jobs;
@@ -28,6 +29,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 pub use app::{StartError, ViewerApp, ViewerOptions};
+pub use first_image::{FirstImage, FirstImageWatch};
 
 /// What the viewer opens.
 pub enum Scene {
@@ -61,14 +63,15 @@ impl std::error::Error for RunError {}
 
 /// Opens the viewer window on `scene` and returns when it is closed.
 pub fn run(scene: Option<PathBuf>) -> Result<(), StartError> {
-    run_scene(scene.map_or(Scene::None, Scene::File)).map_err(|e| match e {
+    run_scene(scene.map_or(Scene::None, Scene::File), None).map_err(|e| match e {
         RunError::NoDisplay(m) => StartError(m),
         RunError::Failed(e) => e,
     })
 }
 
-/// [`run`], telling a missing display apart from other failures.
-pub fn run_scene(scene: Scene) -> Result<(), RunError> {
+/// [`run`], telling a missing display apart from other failures; with
+/// `first_image`, the window closes once the first image (or a problem) is shown.
+pub fn run_scene(scene: Scene, first_image: Option<FirstImageWatch>) -> Result<(), RunError> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("Glint")
@@ -84,6 +87,7 @@ pub fn run_scene(scene: Scene) -> Result<(), RunError> {
         Scene::File(path) => ViewerOptions::new(Some(path)),
         Scene::BuiltIn { name, text } => ViewerOptions { scene_text: Some(text), ..ViewerOptions::new(Some(name)) },
     };
+    let options = ViewerOptions { first_image, ..options };
     eframe::run_native("glint", native, Box::new(|cc| Ok(Box::new(ViewerApp::new(cc, options)?)))).map_err(|e| match e {
         // The event loop could not start: no window system to talk to. winit's
         // message names its own source file; say what it means instead.

@@ -73,7 +73,7 @@ pub fn harness(scene: Option<PathBuf>, shaders: ShaderSource) -> Harness<'static
     Harness::builder()
         .with_size([1100.0, 760.0])
         .wgpu_setup(glint_viewer::wgpu_setup())
-        .build_eframe(move |cc| ViewerApp::new(cc, ViewerOptions { scene, shaders, scene_text: None }).unwrap_or_else(|e| panic!("{e}")))
+        .build_eframe(move |cc| ViewerApp::new(cc, ViewerOptions { scene, shaders, scene_text: None, first_image: None }).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// Steps frames until `done` holds, failing after `TIMEOUT`.
