@@ -12,7 +12,10 @@ For each scene, alternating the two renderers:
   * cold process: process start to image written with no shader or kernel
     cache — Glint with MESA_SHADER_CACHE_DISABLE=true, Mitsuba with an empty
     Dr.Jit kernel cache (a fresh HOME) — for Glint's shaded render and depth
-    view, and Mitsuba's depth and path (max depth 5) renders.
+    view, and Mitsuba's depth and path (max depth 5) renders;
+  * the viewer's cold first image: `glint view --first-image` under Xvfb
+    (process start to the first complete image on screen, no shader cache),
+    against Mitsuba's cold path process (issue 17: within 2x, ratio >= 0.5).
 Absolute times on shared VMs vary 2-3x between machines and days: only the
 ratios of one run mean anything.
 """
@@ -74,6 +77,15 @@ def glint_cold(glint, nff, size, view, work):
     return timed([glint, "render", nff, "--width", str(size), "--height", str(size), "--view", view, "-o", out, "--quiet"], env)
 
 
+def glint_viewer_cold(glint, nff):
+    """`glint view --first-image` under Xvfb with no shader cache: the viewer's
+    own report of process start to first complete image on screen."""
+    env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
+    out = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", glint, "view", "--first-image", nff],
+                         check=True, env=env, capture_output=True, text=True).stdout
+    return float(out.split()[-2])
+
+
 def mitsuba_run(nff, size, mode, integrator, frames, work):
     """Runs this script as a Mitsuba worker in a fresh process; returns its report."""
     env = dict(os.environ)
@@ -126,6 +138,7 @@ def main():
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--frames", type=int, default=5)
     parser.add_argument("--no-cold", action="store_true", help="skip the cold-process measurements")
+    parser.add_argument("--no-viewer", action="store_true", help="skip the viewer's cold first image (needs xvfb-run)")
     parser.add_argument("--worker", help=argparse.SUPPRESS)
     parser.add_argument("--mode", default="warm", help=argparse.SUPPRESS)
     parser.add_argument("--integrator", default="depth", help=argparse.SUPPRESS)
@@ -156,6 +169,9 @@ def main():
     if not args.no_cold:
         header += " Glint cold depth | Mitsuba cold depth | ratio | Glint cold shaded | Mitsuba cold path | ratio |"
         rule += "---:|---:|---:|---:|---:|---:|"
+        if not args.no_viewer:
+            header += " Glint viewer cold first image | ratio to Mitsuba cold path |"
+            rule += "---:|---:|"
     print(header)
     print(rule)
     for name, path in files:
@@ -169,6 +185,9 @@ def main():
             m_path = mitsuba_run(path, args.size, "cold", "path", 1, work)["wall"]
             row += f" {depth * 1e3:.0f} | {m_depth * 1e3:.0f} | {m_depth / depth:.2f} |"
             row += f" {shaded * 1e3:.0f} | {m_path * 1e3:.0f} | {m_path / shaded:.2f} |"
+            if not args.no_viewer:
+                viewer = glint_viewer_cold(args.glint, path)
+                row += f" {viewer * 1e3:.0f} | {m_path / viewer:.2f} |"
         print(row, flush=True)
 
 
