@@ -4,6 +4,7 @@
 //! manager's close button asks (WM_DELETE_WINDOW). It is started with no scene
 //! from a directory without `scenes/`: the showcase is built into the binary.
 
+use std::ffi::OsStr;
 use std::io::{BufRead, BufReader, Read};
 use std::os::unix::process::CommandExt;
 use std::path::Path;
@@ -28,6 +29,23 @@ impl Drop for Group {
             let _ = self.0.wait();
         }
     }
+}
+
+/// Runs `command` under a virtual X server in `dir`, in a process group of its
+/// own, its output piped.
+fn under_xvfb(command: &[&OsStr], dir: &Path) -> Group {
+    let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
+    let child = Command::new("xvfb-run")
+        .args(["-a", "-s", &screen])
+        .args(command)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .process_group(0)
+        .spawn()
+        .expect("xvfb-run must be installed (bash .ci/setup installs it)");
+    Group(child)
 }
 
 /// The top-level window whose title starts with "Glint", once it is shown.
@@ -66,18 +84,8 @@ fn save(pixels: &[[u8; 3]], path: &Path) {
 #[test]
 fn the_viewer_renders_under_xvfb_and_closes_cleanly() {
     let elsewhere = tempfile::tempdir().unwrap();
-    let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
-    let child = Command::new("xvfb-run")
-        .args(["-a", "-s", &screen, "sh", "-c", r#"echo "$DISPLAY"; exec "$0" view"#])
-        .arg(env!("CARGO_BIN_EXE_glint"))
-        .current_dir(elsewhere.path())
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .process_group(0)
-        .spawn()
-        .expect("xvfb-run must be installed (bash .ci/setup installs it)");
-    let mut group = Group(child);
+    let shell = r#"echo "$DISPLAY"; exec "$0" view"#;
+    let mut group = under_xvfb(&["sh".as_ref(), "-c".as_ref(), shell.as_ref(), env!("CARGO_BIN_EXE_glint").as_ref()], elsewhere.path());
     let mut stderr = group.0.stderr.take().unwrap();
     let stderr = std::thread::spawn(move || {
         let mut text = String::new();
@@ -145,19 +153,8 @@ fn the_viewer_renders_under_xvfb_and_closes_cleanly() {
 
 /// `glint view --first-image FILE` under Xvfb, in its own process group.
 fn first_image(scene: &Path) -> std::process::Output {
-    let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
-    let child = Command::new("xvfb-run")
-        .args(["-a", "-s", &screen])
-        .arg(env!("CARGO_BIN_EXE_glint"))
-        .args(["view", "--first-image"])
-        .arg(scene)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .process_group(0)
-        .spawn()
-        .expect("xvfb-run must be installed (bash .ci/setup installs it)");
-    let mut group = Group(child);
+    let glint = env!("CARGO_BIN_EXE_glint").as_ref();
+    let mut group = under_xvfb(&[glint, "view".as_ref(), "--first-image".as_ref(), scene.as_os_str()], Path::new("."));
     let (stdout, stderr) = (group.0.stdout.take().unwrap(), group.0.stderr.take().unwrap());
     let read = |mut pipe: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
