@@ -38,8 +38,8 @@ fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
     }
 }
 
-// Ray counts go to this workgroup's slot (STAT_SLOTS of them): a workgroup barrier to sum them
-// first would cost more than the few uncontended atomics.
+// Ray counts go to this workgroup's slot (of STAT_SLOTS): a workgroup barrier
+// to sum them first would cost more than the few uncontended atomics.
 fn flush_ray_counts(wid: vec3<u32>, groups: vec3<u32>) {
     let base = ((wid.y * groups.x + wid.x) & (STAT_SLOTS - 1u)) * STAT_COUNT;
     for (var k = 0u; k < STAT_COUNT; k++) {

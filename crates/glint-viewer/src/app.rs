@@ -288,7 +288,7 @@ impl ViewerApp {
             // Converged means submitted: the image is there once the device is done.
             done && self.device.poll(wgpu::PollType::wait_indefinitely()).is_ok()
         };
-        if watch.check(self.errors.scene.as_ref(), &others, shown) {
+        if watch.check(self.errors.scene.as_deref(), &others, shown) {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
     }

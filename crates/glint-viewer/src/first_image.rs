@@ -38,12 +38,12 @@ impl FirstImageWatch {
 
     /// Records the outcome of this frame, if it has one: true when the window
     /// should close. `shown` waits for the device to finish the image first.
-    pub(crate) fn check(&self, scene_error: Option<&String>, other_errors: &[String], shown: impl FnOnce() -> bool) -> bool {
+    pub(crate) fn check(&self, scene_error: Option<&str>, other_errors: &[String], shown: impl FnOnce() -> bool) -> bool {
         if self.outcome().is_some() {
             return false;
         }
         let outcome = if let Some(e) = scene_error {
-            FirstImage::SceneError(e.clone())
+            FirstImage::SceneError(e.to_string())
         } else if !other_errors.is_empty() {
             FirstImage::Failed(other_errors.join("; "))
         } else if shown() {
@@ -66,7 +66,7 @@ mod tests {
         assert!(!watch.check(None, &[], || false), "nothing shown yet");
         assert_eq!(watch.outcome(), None);
         let scene = "scene.toml:3: unknown key".to_string();
-        assert!(watch.check(Some(&scene), &["a GPU error".into()], || true));
+        assert!(watch.check(Some(scene.as_str()), &["a GPU error".into()], || true));
         assert_eq!(watch.outcome(), Some(FirstImage::SceneError(scene)));
         assert!(!watch.check(None, &[], || true), "decided once");
 
