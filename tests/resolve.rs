@@ -4,7 +4,8 @@
 
 mod support;
 
-use glint_gpu::{display, RenderOptions, ToneMap};
+use glint_gpu::shaders::{Kernel, ShaderSource};
+use glint_gpu::{display, Acceleration, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{View, MISS};
 
 const VIEWS: [View; 7] = [View::Shaded, View::Normal, View::Depth, View::Albedo, View::Diffuse, View::Id, View::Heatmap];
@@ -80,4 +81,29 @@ fn exposure_scales_light_views_in_every_output_and_data_views_in_none() {
         let expected = if view.is_data() { one.linear[0][0] } else { 2.0 * one.linear[0][0] };
         assert!((two.linear[0][0] - expected).abs() < 1e-6, "{view:?}: {} at exposure 2, {} at 1", two.linear[0][0], one.linear[0][0]);
     }
+}
+
+/// On a CPU adapter (lavapipe, where the tests run) a render is resolved by
+/// the kernel's twin on the host, so it never compiles the resolve kernel.
+#[test]
+fn a_render_on_a_cpu_adapter_resolves_on_the_host_without_compiling_the_resolve_kernel() {
+    let gpu = support::gpu();
+    assert_eq!(gpu.info().device_type, wgpu::DeviceType::Cpu, "the GPU tests run on lavapipe");
+    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded).unwrap();
+    assert!(renderer.resolves_on_host());
+    let scene = support::parse(
+        "[image]\nwidth = 16\nheight = 8\nbackground = [0.25, 0.5, 0]\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 30\n\
+[ambient]\nintensity = 1\n[material.white]\ncolor = 1\nka = 1\n[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"white\"\n",
+    );
+    let prepared = renderer.prepare(&scene, 16, 8, Acceleration::Bvh).unwrap();
+    let options = RenderOptions { exposure: 0.5, ..RenderOptions::default() };
+    let (image, _) = renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap();
+    for ((x, y), linear) in [((8, 4), [0.5; 3]), ((0, 0), [0.125, 0.25, 0.0])] {
+        let want = display::display_value([linear[0] / 0.5, linear[1] / 0.5, linear[2] / 0.5, 1.0], &options);
+        let (got_linear, got_display) = (image.linear_at(x, y), image.display[(y * 16 + x) as usize]);
+        assert_eq!(got_linear[..3], linear, "pixel ({x}, {y})");
+        assert_eq!(got_display[..3], want, "pixel ({x}, {y})");
+    }
+    let kernels = renderer.kernels_created();
+    assert!(kernels.contains(&Kernel::Trace) && !kernels.contains(&Kernel::Resolve), "{kernels:?}");
 }

@@ -55,10 +55,15 @@ fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Resul
     };
     let trace = compile(Kernel::Trace, &frame(View::Shaded))?;
     let primary = compile(Kernel::Primary, &frame(View::Depth))?;
-    let resolve = compile(Kernel::Resolve, &|| {
-        renderer.resolve(buffers, &RenderOptions::default())?;
-        Ok(())
-    })?;
+    // A CPU adapter resolves renders on the host: no kernel to compile.
+    let resolve = (!renderer.resolves_on_host())
+        .then(|| {
+            compile(Kernel::Resolve, &|| {
+                renderer.resolve(buffers, &RenderOptions::default())?;
+                Ok(())
+            })
+        })
+        .transpose()?;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     let kinds = buffers.specialization.to_string();
     if json {
@@ -69,12 +74,13 @@ fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Resul
             "kinds": kinds,
             "trace_compile_ms": ms(trace),
             "primary_compile_ms": ms(primary),
-            "resolve_compile_ms": ms(resolve),
+            "resolve_compile_ms": resolve.map(ms),
         });
         println!("{value}");
     } else {
         let name = path.file_stem().map_or(path.display().to_string(), |s| s.to_string_lossy().into_owned());
-        println!("{:<22} {:<26} {:>17.0} {:>19.0} {:>19.0}", name, kinds, ms(trace), ms(primary), ms(resolve));
+        let resolve = resolve.map_or("on the host".to_string(), |d| format!("{:.0}", ms(d)));
+        println!("{:<22} {:<26} {:>17.0} {:>19.0} {:>19}", name, kinds, ms(trace), ms(primary), resolve);
     }
     Ok(())
 }

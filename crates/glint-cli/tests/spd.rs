@@ -91,3 +91,16 @@ fn probe_outside_the_image_is_one_clear_usage_error() {
     assert_eq!(message.lines().count(), 1, "{message}");
     assert!(message.contains("pixel (512, 3) is outside the 512 x 512 image: X is 0 to 511"), "{message}");
 }
+
+#[test]
+fn bench_cold_reports_each_kernels_compile() {
+    let o = glint(&["bench", "--cold", "--json", "spd:tetra:2", "--width", "32", "--height", "32"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_str(String::from_utf8(o.stdout).unwrap().trim()).unwrap();
+    assert_eq!(report["kinds"], "triangles, eye rays only");
+    for kernel in ["trace_compile_ms", "primary_compile_ms"] {
+        assert!(report[kernel].as_f64().unwrap() > 0.0, "{report}");
+    }
+    // The tests run on lavapipe, a CPU adapter, which resolves on the host.
+    assert!(report["resolve_compile_ms"].is_null(), "{report}");
+}

@@ -1,11 +1,23 @@
 //! The CPU twin of `shaders/lib/display.wgsl`, the resolve: what one pixel's
 //! accumulated samples become, as a linear value and as a display value. The
 //! kernel is the definition; this twin states it in Rust so that a test
-//! (`tests/resolve.rs`) can hold the GPU to it pixel by pixel.
+//! (`tests/resolve.rs`) can hold the GPU to it pixel by pixel, and resolves
+//! renders on a CPU adapter, where compiling the kernel costs more than it saves.
 
 use glint_scene::gpu_types::View;
 
-use crate::{RenderOptions, ToneMap};
+use crate::{Image, RenderOptions, ToneMap};
+
+/// A tile's accumulated samples resolved on the host, as the kernel would.
+pub fn resolve(samples: &[[f32; 4]], width: u32, height: u32, options: &RenderOptions) -> Image {
+    let opaque = |[r, g, b]: [f32; 3]| [r, g, b, 1.0];
+    Image {
+        width,
+        height,
+        display: samples.iter().map(|&s| opaque(display_value(s, options))).collect(),
+        linear: samples.iter().map(|&s| opaque(linear_value(s, options))).collect(),
+    }
+}
 
 /// The mean of the samples; scaled by the exposure unless `view` is a data view.
 pub fn linear_value(sample: [f32; 4], options: &RenderOptions) -> [f32; 3] {

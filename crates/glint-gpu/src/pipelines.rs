@@ -54,6 +54,12 @@ impl Pipelines {
         Ok(pipeline)
     }
 
+    /// The kernels with a pipeline so far, for any specialisation.
+    pub fn kernels(&self) -> Vec<Kernel> {
+        let built = self.built.lock().unwrap_or_else(|e| e.into_inner());
+        Kernel::ALL.into_iter().filter(|&kernel| built.keys().any(|&(built, _)| built == kernel)).collect()
+    }
+
     /// Creates the pipelines of `kernels` for `specialization` that do not exist yet.
     pub fn create(&self, kernels: &[Kernel], specialization: Specialization) -> Result<(), GpuError> {
         kernels.iter().try_for_each(|&kernel| self.get(kernel, specialization).map(drop))

@@ -15,7 +15,7 @@ use crate::pipelines::Pipelines;
 use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::shaders::{Kernel, ShaderSource};
 use crate::tiles::Region;
-use crate::{GpuError, Image};
+use crate::{display, GpuError, Image};
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -124,6 +124,10 @@ pub struct Renderer {
     /// The most pixels a tile may have, below what the device's buffer limits
     /// allow (`None`: only those limits).
     max_tile_pixels: Option<u64>,
+    /// Whether the host resolves read-backs with the resolve kernel's CPU twin.
+    /// On a CPU adapter the resolve kernel's compile (~0.1 s on lavapipe, paid
+    /// by every cold render) costs far more than the host's pass over a tile.
+    resolves_on_host: bool,
 }
 
 /// A scene uploaded for one image size.
@@ -162,6 +166,7 @@ impl Renderer {
             *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
         });
         Ok(Self {
+            resolves_on_host: device.adapter_info().device_type == wgpu::DeviceType::Cpu,
             device,
             queue,
             pipelines,
@@ -327,7 +332,10 @@ impl Renderer {
         tile: &mut dyn FnMut(Region, Image) -> Result<(), GpuError>,
     ) -> Result<RayStats, GpuError> {
         check_region(scene, region)?;
-        self.create_pipelines(scene, &[kernel_for(options.view), Kernel::Resolve])?;
+        self.create_pipelines(scene, &[kernel_for(options.view)])?;
+        if !self.resolves_on_host {
+            self.create_pipelines(scene, &[Kernel::Resolve])?;
+        }
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = (|| {
             let mut stats = RayStats::default();
@@ -476,18 +484,42 @@ impl Renderer {
         self.resolve_buffer(&scene.accum, scene.width, scene.height, options)
     }
 
-    /// Resolves `samples` (rgb sums and sample counts) as the kernel resolves
-    /// an accumulation buffer: what the CPU twin in `display.rs` is tested against.
+    /// Resolves `samples` (rgb sums and sample counts) with the resolve kernel,
+    /// whatever the adapter: what the CPU twin in `display.rs` is tested against.
     pub fn resolve_samples(&self, samples: &[[f32; 4]], width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
         let buffer = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("samples"),
             contents: bytemuck::cast_slice(samples),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        self.resolve_buffer(&buffer, width, height, options)
+        self.resolve_on_device(&buffer, width, height, options)
+    }
+
+    /// The kernels whose pipelines this renderer has created so far.
+    pub fn kernels_created(&self) -> Vec<Kernel> {
+        self.pipelines.kernels()
+    }
+
+    /// Whether renders resolve on the host (a CPU adapter) instead of with the
+    /// resolve kernel.
+    pub fn resolves_on_host(&self) -> bool {
+        self.resolves_on_host
     }
 
     fn resolve_buffer(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
+        if !self.resolves_on_host {
+            return self.resolve_on_device(samples, width, height, options);
+        }
+        let bytes = u64::from(width * height) * PIXEL_BYTES;
+        let readback = self.readback_buffer(bytes);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(samples, 0, &readback, 0, bytes);
+        self.queue.submit([encoder.finish()]);
+        let samples: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&self.read(&readback)?);
+        Ok(display::resolve(&samples, width, height, options))
+    }
+
+    fn resolve_on_device(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
         let resolve = self.pipelines.get(Kernel::Resolve, Specialization::ALL)?;
         let pixels = width * height;
         let bytes = u64::from(pixels) * PIXEL_BYTES;
