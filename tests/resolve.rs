@@ -8,7 +8,7 @@ use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{display, Acceleration, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{View, MISS};
 
-const VIEWS: [View; 7] = [View::Shaded, View::Normal, View::Depth, View::Albedo, View::Diffuse, View::Id, View::Heatmap];
+const VIEWS: [View; 9] = View::ALL;
 
 /// Samples covering what the kernels write: radiance sums of several samples,
 /// zeros, unit normals, depths and misses, ids and −1, node counts, NaN.

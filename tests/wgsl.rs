@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use glint_gpu::shaders::{imports, Kernel, ShaderSource, SOURCES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
-    DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms,
+    DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
 };
 use glint_scene::specialization::Specialization;
 
@@ -40,11 +40,14 @@ fn every_specialisation_validates() {
         if !intersects {
             continue;
         }
-        for bits in 0..64u32 {
+        let views = View::ALL.map(|view| Specialization { view: Some(view), ..Specialization::ALL });
+        let kinds = (0..64u32).map(|bits| {
             let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
-            let kinds = Specialization { spheres, triangles, polygons, cones, planes, secondary_rays };
-            if let Err(e) = ShaderSource::Embedded.compose(kernel, kinds).unwrap().validate() {
-                panic!("{kernel:?} for {kinds}: {e}");
+            Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, view: None }
+        });
+        for specialization in kinds.chain(views) {
+            if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization).unwrap().validate() {
+                panic!("{kernel:?} for {specialization}: {e}");
             }
         }
     }

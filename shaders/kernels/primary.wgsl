@@ -8,18 +8,18 @@
 fn primary_view(eye: Ray) -> vec3<f32> {
     let hit = traverse(eye, 0.0, MISS, false, false);
     count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
-    if dispatch.view == VIEW_HEATMAP {
+    if dispatch_view() == VIEW_HEATMAP {
         return vec3<f32>(f32(hit.nodes));
     }
     if hit.t == MISS {
-        switch dispatch.view {
+        switch dispatch_view() {
             case VIEW_DEPTH: { return vec3<f32>(MISS); }
             case VIEW_ID: { return vec3<f32>(-1.0); }
             default: { return vec3<f32>(0.0); }
         }
     }
     let p = prims[hit.prim];
-    switch dispatch.view {
+    switch dispatch_view() {
         case VIEW_DEPTH: { return vec3<f32>(hit.t); }
         case VIEW_ALBEDO: { return material_at(p, eye.origin + hit.t * eye.dir).color; }
         // x for display and AOVs (exact up to 2^24), y the index's own bits,

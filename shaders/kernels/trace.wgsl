@@ -1,7 +1,7 @@
 // The trace kernel: one sample per pixel per dispatch, Whitted's ray tree
 // (lib/ray_tree.wgsl). The teaching views show the tree's size instead of its
 // colour: how deep it went, and how many rays it took.
-// import: bindings bvh camera dispatch primitive ray_tree sample types
+// import: bvh camera dispatch primitive ray_tree sample types
 
 @compute @workgroup_size(8, 8)
 fn trace_main(
@@ -12,7 +12,7 @@ fn trace_main(
     let pixel = band_pixel(gid);
     if in_band(pixel) {
         let color = trace_pixel(camera_ray(vec2<f32>(pixel) + sample_offset(pixel)));
-        switch dispatch.view {
+        switch dispatch_view() {
             case VIEW_RAY_DEPTH: { accumulate(pixel, vec3<f32>(f32(deepest))); }
             case VIEW_RAY_COUNT: { accumulate(pixel, vec3<f32>(f32(rays_counted()))); }
             default: { accumulate(pixel, color); }

@@ -17,6 +17,12 @@ fn rays_counted() -> u32 {
     return total;
 }
 
+// The view this dispatch renders: a constant in a kernel specialised to one
+// view (ONLY_VIEW), so the driver compiles that view's code alone.
+fn dispatch_view() -> u32 {
+    return select(dispatch.view, ONLY_VIEW, ONLY_VIEW != ANY_VIEW);
+}
+
 // The pixel an invocation traces in the current band, if the band covers one.
 fn band_pixel(gid: vec3<u32>) -> vec2<u32> {
     return gid.xy + dispatch.origin;

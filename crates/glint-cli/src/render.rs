@@ -322,6 +322,8 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let mut prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
 
     let view = args.view.view();
+    let views: Vec<View> = std::iter::once(view).chain(args.aov.iter().map(|(aov, _)| aov.view())).collect();
+    prepared.buffers.specialization = prepared.buffers.specialization.for_views(&views);
     let options = RenderOptions {
         view,
         spp: if view.is_primary_only() { 1 } else { args.spp },

@@ -147,7 +147,8 @@ pub struct SceneBuffers {
     pub(crate) lights: wgpu::Buffer,
     /// Bytes of geometry, BVH, materials and lights on the device.
     pub scene_bytes: u64,
-    /// The primitive kinds the kernels that render it are compiled for.
+    /// What the kernels that render it are compiled for: the primitive kinds,
+    /// and the view when a command renders one alone.
     pub specialization: Specialization,
 }
 
@@ -332,7 +333,7 @@ impl Renderer {
         tile: &mut dyn FnMut(Region, Image) -> Result<(), GpuError>,
     ) -> Result<RayStats, GpuError> {
         check_region(scene, region)?;
-        self.create_pipelines(scene, &[kernel_for(options.view)])?;
+        self.pipelines.get(kernel_for(options.view), scene.specialization.dispatching(options.view))?;
         if !self.resolves_on_host {
             self.create_pipelines(scene, &[Kernel::Resolve])?;
         }
@@ -465,7 +466,7 @@ impl Renderer {
         region: DispatchParams,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), GpuError> {
-        let pipeline = self.pipelines.get(kernel_for(view), scene.specialization)?;
+        let pipeline = self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view))?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());

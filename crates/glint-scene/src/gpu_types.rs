@@ -81,6 +81,8 @@ shared_constants! {
     VIEW_HEATMAP: u32 = View::Heatmap as u32;
     VIEW_RAY_DEPTH: u32 = View::RayDepth as u32;
     VIEW_RAY_COUNT: u32 = View::RayCount as u32;
+    /// A kernel's `ONLY_VIEW` when it serves every view (specialization.rs).
+    ANY_VIEW: u32 = u32::MAX;
 
     FILTER_BOX: u32 = Filter::Box as u32;
     FILTER_TENT: u32 = Filter::Tent as u32;
@@ -143,7 +145,7 @@ const _: () = assert!(STAT_SLOTS.is_power_of_two(), "flush_ray_counts takes the 
 
 /// What the trace kernel writes per pixel; mirrored by the VIEW_ constants in
 /// shaders/types.wgsl.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[repr(u32)]
 pub enum View {
     /// The full Whitted render.
@@ -168,6 +170,18 @@ pub enum View {
 }
 
 impl View {
+    pub const ALL: [View; 9] = [
+        View::Shaded,
+        View::Normal,
+        View::Depth,
+        View::Albedo,
+        View::Diffuse,
+        View::Id,
+        View::Heatmap,
+        View::RayDepth,
+        View::RayCount,
+    ];
+
     /// Views computed from the primary ray alone, through the pixel centre.
     pub fn is_primary_only(self) -> bool {
         !matches!(self, View::Shaded | View::RayDepth | View::RayCount)

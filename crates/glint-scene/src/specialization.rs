@@ -2,14 +2,14 @@
 //! to CPU code when it is first used, and the time it takes grows with the code
 //! it is given: a kernel specialised to a scene carries no intersection code for
 //! primitive kinds the scene does not hold, and no reflected or refracted rays
-//! when no material makes any (each becomes a `const` flag in the kernel's
-//! prelude, whose dead branches the driver's compiler removes before it
-//! generates code).
+//! when no material makes any, and, for a command that renders one view, no
+//! code of the others (each becomes a `const` in the kernel's prelude, whose
+//! dead branches the driver's compiler removes before it generates code).
 
-use crate::gpu_types::{GpuMaterial, GpuScene, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
+use crate::gpu_types::{GpuMaterial, GpuScene, View, ANY_VIEW, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
 
-/// The primitive kinds a kernel can intersect, and whether its ray tree goes
-/// past the eye ray.
+/// The primitive kinds a kernel can intersect, whether its ray tree goes past
+/// the eye ray, and the view it renders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Specialization {
     pub spheres: bool,
@@ -20,12 +20,22 @@ pub struct Specialization {
     /// Some material reflects or transmits, so rays may spawn reflected and
     /// refracted rays.
     pub secondary_rays: bool,
+    /// The one view every dispatch renders, or `None`: each dispatch says
+    /// (the viewer's kernels, a render that writes AOVs besides its image).
+    pub view: Option<View>,
 }
 
 impl Specialization {
     /// Everything: for a kernel that must serve any scene.
-    pub const ALL: Specialization =
-        Specialization { spheres: true, triangles: true, polygons: true, cones: true, planes: true, secondary_rays: true };
+    pub const ALL: Specialization = Specialization {
+        spheres: true,
+        triangles: true,
+        polygons: true,
+        cones: true,
+        planes: true,
+        secondary_rays: true,
+        view: None,
+    };
 
     /// What `scene` needs.
     pub fn of(scene: &GpuScene) -> Specialization {
@@ -36,6 +46,7 @@ impl Specialization {
             cones: false,
             planes: false,
             secondary_rays: scene.materials.iter().any(spawns_secondary_rays),
+            view: None,
         };
         for p in &scene.prims {
             match p.kind() {
@@ -56,6 +67,20 @@ impl Specialization {
         Specialization { secondary_rays: true, ..self }
     }
 
+    /// Specialised to `views`, the views a command renders, when it is one
+    /// view: its kernel then compiles that view's code alone. With several,
+    /// one kernel that serves them all compiles sooner than one per view.
+    pub fn for_views(self, views: &[View]) -> Specialization {
+        let one = views.split_first().filter(|(first, rest)| rest.iter().all(|v| v == *first));
+        Specialization { view: one.map(|(&view, _)| view), ..self }
+    }
+
+    /// The specialisation a dispatch of `view` runs: this one when it is for
+    /// that view or any, else the same kinds for any view.
+    pub fn dispatching(self, view: View) -> Specialization {
+        if self.view.is_none_or(|only| only == view) { self } else { Specialization { view: None, ..self } }
+    }
+
     /// Whether a kernel of this specialisation renders `materials` rightly.
     pub fn covers(self, materials: &[GpuMaterial]) -> bool {
         self.secondary_rays || !materials.iter().any(spawns_secondary_rays)
@@ -74,7 +99,9 @@ impl Specialization {
 
     /// The WGSL constants that carry it, appended to a kernel's prelude.
     pub fn wgsl(self) -> String {
-        self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect()
+        let mut wgsl: String = self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect();
+        wgsl.push_str(&format!("const ONLY_VIEW: u32 = {}u;\n", self.view.map_or(ANY_VIEW, |view| view as u32)));
+        wgsl
     }
 }
 
@@ -95,6 +122,9 @@ impl std::fmt::Display for Specialization {
         f.write_str(if kinds.is_empty() { "no primitives".to_string() } else { kinds.join("+") }.as_str())?;
         if !self.secondary_rays {
             f.write_str(", eye rays only")?;
+        }
+        if let Some(view) = self.view {
+            write!(f, ", {} view only", format!("{view:?}").to_lowercase())?;
         }
         Ok(())
     }
@@ -122,7 +152,15 @@ mod tests {
     #[test]
     fn a_scene_specialises_to_the_kinds_it_holds() {
         let needs = Specialization::of(&scene(&[PRIM_TRIANGLE, PRIM_CONE, PRIM_TRIANGLE], 0.5));
-        let want = Specialization { spheres: false, triangles: true, polygons: false, cones: true, planes: false, secondary_rays: true };
+        let want = Specialization {
+            spheres: false,
+            triangles: true,
+            polygons: false,
+            cones: true,
+            planes: false,
+            secondary_rays: true,
+            view: None,
+        };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones");
         let every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
@@ -146,5 +184,19 @@ mod tests {
         for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SECONDARY_RAYS"] {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
+    }
+
+    #[test]
+    fn a_command_of_one_view_specialises_to_it_and_other_dispatches_get_any_view() {
+        let kinds = Specialization::of(&scene(&[PRIM_TRIANGLE], 0.0));
+        let depth = kinds.for_views(&[View::Depth, View::Depth]);
+        assert_eq!(depth.view, Some(View::Depth));
+        assert_eq!(depth.to_string(), "triangles, eye rays only, depth view only");
+        assert_eq!(kinds.for_views(&[View::Depth, View::Normal]), kinds);
+        assert_eq!(depth.dispatching(View::Depth), depth);
+        assert_eq!(depth.dispatching(View::Normal), kinds);
+        assert_eq!(kinds.dispatching(View::Normal), kinds);
+        assert!(depth.wgsl().contains(&format!("const ONLY_VIEW: u32 = {}u;", View::Depth as u32)));
+        assert!(kinds.wgsl().contains(&format!("const ONLY_VIEW: u32 = {ANY_VIEW}u;")));
     }
 }
