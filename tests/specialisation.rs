@@ -1,6 +1,7 @@
-//! A kernel specialised to the one view a command renders (glint-scene's
-//! specialization.rs; `glint render` without AOVs) renders the very pixels and
-//! ray counts of the kernel that serves every view.
+//! Kernels specialised to the one view a command renders (`glint render`
+//! without AOVs) and to the shading terms a scene's materials and lights make
+//! (glint-scene's specialization.rs) render the very pixels and ray counts of
+//! the kernels that serve every view and every term.
 
 mod support;
 
@@ -8,12 +9,9 @@ use glint_gpu::{Acceleration, RenderOptions};
 use glint_scene::gpu_types::View;
 use support::{parse, renderer};
 
-#[test]
-fn a_kernel_for_one_view_renders_it_as_the_kernel_for_every_view() {
-    // Small kernels (two kinds) keep the compiles quick; the mirror floor
-    // makes ray trees of different depths.
-    let scene = parse(
-        r#"
+// Small kernels (two kinds) keep the compiles quick; the mirror floor makes
+// ray trees of different depths.
+const SCENE: &str = r#"
 [image]
 width = 24
 height = 16
@@ -40,8 +38,11 @@ material = "white"
 type = "triangle"
 vertices = [[-3, -1, -3], [3, -1, -3], [0, -1, 3]]
 material = "mirror"
-"#,
-    );
+"#;
+
+#[test]
+fn a_kernel_for_one_view_renders_it_as_the_kernel_for_every_view() {
+    let scene = parse(SCENE);
     let r = renderer();
     let mut prepared = r.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap();
     let every_view = prepared.buffers.specialization;
@@ -59,4 +60,23 @@ material = "mirror"
         assert_eq!(got_stats, want_stats, "{view:?}: ray counts differ");
         assert!(want.linear.iter().any(|p| p[..3] != want.linear[0][..3]), "{view:?}: the image should not be flat");
     }
+}
+
+#[test]
+fn a_kernel_without_the_terms_a_scene_lacks_renders_what_the_kernel_with_them_renders() {
+    // No highlight (k_s = 0), no checkerboard, a light that does not fade.
+    let scene = parse(&SCENE.replace("ks = 0.3", "ks = 0").replace("reflect = 0.5", "reflect = 0.5\nks = 0"));
+    let r = renderer();
+    let mut prepared = r.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap();
+    let own = prepared.buffers.specialization;
+    assert!(!own.highlights && !own.checker && !own.attenuation && own.secondary_rays, "{own:?}");
+    let options = RenderOptions { spp: 3, seed: 2, ..RenderOptions::default() };
+    let mut render = |specialization| {
+        prepared.buffers.specialization = specialization;
+        r.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap()
+    };
+    let (want, want_stats) = render(own.editable());
+    let (got, got_stats) = render(own);
+    assert!(got.linear == want.linear && got.display == want.display, "pixels differ");
+    assert_eq!(got_stats, want_stats);
 }

@@ -43,9 +43,10 @@ fn every_specialisation_validates() {
         let views = View::ALL.map(|view| Specialization { view: Some(view), ..Specialization::ALL });
         let kinds = (0..64u32).map(|bits| {
             let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
-            Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, view: None }
+            Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }
         });
-        for specialization in kinds.chain(views) {
+        let plain = Specialization { highlights: false, checker: false, attenuation: false, ..Specialization::ALL };
+        for specialization in kinds.chain(views).chain([plain]) {
             if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization).unwrap().validate() {
                 panic!("{kernel:?} for {specialization}: {e}");
             }

@@ -10,7 +10,7 @@
 // The material at `point` on primitive `p`, its colour the checker's there.
 fn material_at(p: GpuPrim, point: vec3<f32>) -> GpuMaterial {
     var m = materials[prim_material(p)];
-    if (m.flags & MATERIAL_CHECKER) == 0u {
+    if !HAS_CHECKER || (m.flags & MATERIAL_CHECKER) == 0u {
         return m;
     }
     var q = point;

@@ -6,6 +6,11 @@
 // import: bindings primitive reflect shadow types
 
 fn light_attenuation(light: GpuLight, d: f32) -> f32 {
+    // A kernel for a scene whose lights do not fade (HAS_ATTENUATION false,
+    // specialization.rs) compiles without the falloff.
+    if !HAS_ATTENUATION {
+        return 1.0;
+    }
     switch light.attenuation {
         case ATTENUATION_INVERSE_SQUARE: { return 1.0 / (d * d); }
         case ATTENUATION_POLYNOMIAL: {
@@ -64,7 +69,11 @@ fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
         }
         let reach = att * shadow.transmittance * light.radiance;
         let diffuse = reach * m.kd * m.color * n_dot_l;
-        let specular = reach * specular_term(m, s.shading, l, v);
+        // Without highlights in the scene (HAS_HIGHLIGHTS false) the term is 0.
+        var specular = vec3<f32>(0.0);
+        if HAS_HIGHLIGHTS {
+            specular = reach * specular_term(m, s.shading, l, v);
+        }
         note_light(i, s.point, l, distance, n_dot_l, shadow, diffuse, specular);
         color += diffuse + specular;
     }

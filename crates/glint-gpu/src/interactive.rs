@@ -185,8 +185,8 @@ impl Renderer {
     }
 
     /// Writes `materials` (packed in scene order) over the scene's materials;
-    /// a scene uploaded without secondary rays takes no material that makes
-    /// them (see `Specialization::with_secondary_rays`).
+    /// a scene uploaded for fewer terms than they make (no secondary rays, say)
+    /// takes none of them (see `Specialization::editable`).
     pub fn write_materials(&self, scene: &SceneBuffers, materials: &[GpuMaterial]) -> Result<(), GpuError> {
         if materials.len() > scene.material_capacity() {
             return Err(GpuError::Runtime(format!(
@@ -196,22 +196,29 @@ impl Renderer {
             )));
         }
         if !scene.specialization.covers(materials) {
-            return Err(GpuError::Runtime(
-                "the scene was uploaded for eye rays only: a reflecting or transmitting material needs it uploaded with secondary rays".into(),
-            ));
+            return Err(GpuError::Runtime(format!(
+                "the scene was uploaded for its own materials' terms ({}): edited materials need it uploaded editable",
+                scene.specialization
+            )));
         }
         self.queue.write_buffer(&scene.materials, 0, bytemuck::cast_slice(materials));
         Ok(())
     }
 
     /// Replaces the scene's lights by `lights` (the enabled ones, packed), which
-    /// must fit the buffer uploaded with the scene.
+    /// must fit the buffer uploaded with the scene and its kernels' terms.
     pub fn write_lights(&self, scene: &SceneBuffers, lights: &[GpuLight]) -> Result<(), GpuError> {
         if lights.len() > scene.light_capacity() {
             return Err(GpuError::Runtime(format!(
                 "{} lights do not fit the room for {} uploaded",
                 lights.len(),
                 scene.light_capacity()
+            )));
+        }
+        if !scene.specialization.covers_lights(lights) {
+            return Err(GpuError::Runtime(format!(
+                "the scene was uploaded for lights that do not fade ({}): edited lights need it uploaded editable",
+                scene.specialization
             )));
         }
         self.queue.write_buffer(&scene.lights, 0, bytemuck::cast_slice(lights));

@@ -331,6 +331,11 @@ impl GpuPrim {
     pub fn kind(&self) -> u32 {
         self.kind_material & 0xff
     }
+
+    /// Index of its material (WGSL `prim_material`).
+    pub fn material(&self) -> usize {
+        (self.kind_material >> 8) as usize
+    }
 }
 
 /// One ray of a probed tree, as shaders/kernels/probe.wgsl records it.

@@ -2,14 +2,18 @@
 //! to CPU code when it is first used, and the time it takes grows with the code
 //! it is given: a kernel specialised to a scene carries no intersection code for
 //! primitive kinds the scene does not hold, and no reflected or refracted rays
-//! when no material makes any, and, for a command that renders one view, no
-//! code of the others (each becomes a `const` in the kernel's prelude, whose
-//! dead branches the driver's compiler removes before it generates code).
+//! when no material makes any, no highlight, checkerboard or light falloff
+//! when the scene has none, and, for a command that renders one view, no code
+//! of the others (each becomes a `const` in the kernel's prelude, whose dead
+//! branches the driver's compiler removes before it generates code).
 
-use crate::gpu_types::{GpuMaterial, GpuScene, View, ANY_VIEW, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
+use crate::gpu_types::{
+    GpuLight, GpuMaterial, GpuScene, View, ANY_VIEW, ATTENUATION_NONE, MATERIAL_CHECKER, MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE,
+    PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
+};
 
 /// The primitive kinds a kernel can intersect, whether its ray tree goes past
-/// the eye ray, and the view it renders.
+/// the eye ray, the terms its shading can have, and the view it renders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Specialization {
     pub spheres: bool,
@@ -20,6 +24,12 @@ pub struct Specialization {
     /// Some material reflects or transmits, so rays may spawn reflected and
     /// refracted rays.
     pub secondary_rays: bool,
+    /// Some material has a highlight (k_s > 0, or a metallic F0).
+    pub highlights: bool,
+    /// Some material is checkered.
+    pub checker: bool,
+    /// Some light fades with distance.
+    pub attenuation: bool,
     /// The one view every dispatch renders, or `None`: each dispatch says
     /// (the viewer's kernels, a render that writes AOVs besides its image).
     pub view: Option<View>,
@@ -34,18 +44,30 @@ impl Specialization {
         cones: true,
         planes: true,
         secondary_rays: true,
+        highlights: true,
+        checker: true,
+        attenuation: true,
         view: None,
     };
 
-    /// What `scene` needs.
+    /// What `scene` needs: its primitives' kinds, the terms of the materials
+    /// they use (a loader's default material may be unused) and its lights'.
     pub fn of(scene: &GpuScene) -> Specialization {
+        let mut used = vec![false; scene.materials.len()];
+        for p in &scene.prims {
+            used[p.material()] = true;
+        }
+        let materials = || scene.materials.iter().zip(&used).filter(|(_, used)| **used).map(|(m, _)| m);
         let mut needs = Specialization {
             spheres: false,
             triangles: false,
             polygons: false,
             cones: false,
             planes: false,
-            secondary_rays: scene.materials.iter().any(spawns_secondary_rays),
+            secondary_rays: materials().any(spawns_secondary_rays),
+            highlights: materials().any(has_highlight),
+            checker: materials().any(is_checkered),
+            attenuation: scene.lights.iter().any(fades),
             view: None,
         };
         for p in &scene.prims {
@@ -61,10 +83,11 @@ impl Specialization {
         needs
     }
 
-    /// The same kinds, with secondary rays whatever the materials: for a scene
-    /// whose materials change in place (the viewer's).
-    pub fn with_secondary_rays(self) -> Specialization {
-        Specialization { secondary_rays: true, ..self }
+    /// The same kinds, with every term materials and lights can make, whatever
+    /// the scene's are: for a scene whose materials and lights change in place
+    /// (the viewer's).
+    pub fn editable(self) -> Specialization {
+        Specialization { secondary_rays: true, highlights: true, checker: true, attenuation: true, ..self }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -83,10 +106,16 @@ impl Specialization {
 
     /// Whether a kernel of this specialisation renders `materials` rightly.
     pub fn covers(self, materials: &[GpuMaterial]) -> bool {
-        self.secondary_rays || !materials.iter().any(spawns_secondary_rays)
+        let needs = |on: bool, term: fn(&GpuMaterial) -> bool| on || !materials.iter().any(term);
+        needs(self.secondary_rays, spawns_secondary_rays) && needs(self.highlights, has_highlight) && needs(self.checker, is_checkered)
     }
 
-    fn flags(self) -> [(&'static str, bool); 6] {
+    /// Whether a kernel of this specialisation renders `lights` rightly.
+    pub fn covers_lights(self, lights: &[GpuLight]) -> bool {
+        self.attenuation || !lights.iter().any(fades)
+    }
+
+    fn flags(self) -> [(&'static str, bool); 9] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
@@ -94,6 +123,9 @@ impl Specialization {
             ("HAS_CONES", self.cones),
             ("HAS_PLANES", self.planes),
             ("HAS_SECONDARY_RAYS", self.secondary_rays),
+            ("HAS_HIGHLIGHTS", self.highlights),
+            ("HAS_CHECKER", self.checker),
+            ("HAS_ATTENUATION", self.attenuation),
         ]
     }
 
@@ -107,6 +139,20 @@ impl Specialization {
 
 fn spawns_secondary_rays(m: &GpuMaterial) -> bool {
     m.reflect.iter().chain(&m.transmit).any(|&k| k > 0.0)
+}
+
+// The specular term k_s·O_s·lobe is exactly 0 with k_s = 0 (the lobe is at
+// most 1), so such materials render the same without it.
+fn has_highlight(m: &GpuMaterial) -> bool {
+    m.ks != 0.0 || m.flags & MATERIAL_METALLIC != 0
+}
+
+fn is_checkered(m: &GpuMaterial) -> bool {
+    m.flags & MATERIAL_CHECKER != 0
+}
+
+fn fades(light: &GpuLight) -> bool {
+    light.attenuation != ATTENUATION_NONE
 }
 
 impl std::fmt::Display for Specialization {
@@ -138,7 +184,7 @@ mod tests {
 
     fn scene(kinds: &[u32], reflect: f32) -> GpuScene {
         GpuScene {
-            prims: kinds.iter().map(|&kind| GpuPrim { kind_material: kind | (7 << 8), ..GpuPrim::zeroed() }).collect(),
+            prims: kinds.iter().map(|&kind| GpuPrim { kind_material: kind, ..GpuPrim::zeroed() }).collect(),
             nodes: Vec::new(),
             grids: Vec::new(),
             bvh_root: 0,
@@ -159,11 +205,16 @@ mod tests {
             cones: true,
             planes: false,
             secondary_rays: true,
+            highlights: false,
+            checker: false,
+            attenuation: false,
             view: None,
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones");
-        let every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
+        let mut every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
+        every.materials[0] = GpuMaterial { reflect: [1.0; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
+        every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
         assert_eq!(Specialization::of(&every), Specialization::ALL);
     }
 
@@ -174,14 +225,36 @@ mod tests {
         assert_eq!(matte.to_string(), "spheres, eye rays only");
         let glass = [GpuMaterial { transmit: [0.0, 0.0, 0.9], ..GpuMaterial::zeroed() }];
         assert!(!matte.covers(&glass) && matte.covers(&[GpuMaterial::zeroed()]));
-        assert!(matte.with_secondary_rays().covers(&glass));
+        assert!(matte.editable().covers(&glass));
+    }
+
+    #[test]
+    fn shading_terms_are_compiled_for_the_materials_and_lights_that_make_them() {
+        let plain = Specialization::of(&scene(&[PRIM_SPHERE], 0.0));
+        assert!(!plain.highlights && !plain.checker && !plain.attenuation);
+        let shiny = GpuMaterial { ks: 0.3, ..GpuMaterial::zeroed() };
+        let metal = GpuMaterial { flags: MATERIAL_METALLIC, ..GpuMaterial::zeroed() };
+        let checkered = GpuMaterial { flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
+        for material in [shiny, metal, checkered] {
+            assert!(!plain.covers(&[material]) && plain.editable().covers(&[material]), "{material:?}");
+        }
+        let fading = GpuLight { attenuation: crate::gpu_types::ATTENUATION_POLYNOMIAL, ..GpuLight::zeroed() };
+        assert!(plain.covers_lights(&[GpuLight::zeroed()]) && !plain.covers_lights(&[fading]));
+        assert!(plain.editable().covers_lights(&[fading]));
+        let mut lit = scene(&[PRIM_SPHERE, PRIM_SPHERE], 0.0);
+        lit.materials = vec![shiny, checkered, GpuMaterial { reflect: [0.5; 3], ..GpuMaterial::zeroed() }];
+        lit.lights = vec![fading];
+        assert!(!Specialization::of(&lit).checker, "only the primitives' materials count");
+        lit.prims[1].kind_material |= 1 << 8;
+        let needs = Specialization::of(&lit);
+        assert!(needs.highlights && needs.checker && needs.attenuation && !needs.secondary_rays);
     }
 
     #[test]
     fn every_flag_is_a_wgsl_constant() {
         let wgsl = Specialization::of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
-        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SECONDARY_RAYS"] {
+        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SECONDARY_RAYS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION"] {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
     }

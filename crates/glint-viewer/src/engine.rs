@@ -54,8 +54,9 @@ impl Canvas {
         let mut prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
         // Progressive rendering needs the whole image on the device at once.
         prepared.buffers.check_whole_image()?;
-        // Materials are edited in place: any of them may come to reflect.
-        prepared.buffers.specialization = prepared.buffers.specialization.with_secondary_rays();
+        // Materials and lights are edited in place: any material may come to
+        // reflect or shine, any light to fade.
+        prepared.buffers.specialization = prepared.buffers.specialization.editable();
         // Here, off the UI thread: the shaded image, the debug views and picking.
         kernels.renderer.create_pipelines(&prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);

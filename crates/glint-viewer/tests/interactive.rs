@@ -183,8 +183,9 @@ fn edits_in_place_equal_a_fresh_upload() {
 }
 
 /// A scene that reflects nothing is uploaded for eye rays only; making a
-/// material reflect in place is refused, unless the scene was uploaded with
-/// secondary rays, as the viewer uploads, and then it renders as a fresh upload.
+/// material reflect in place is refused, unless the scene was uploaded
+/// editable (with every term), as the viewer uploads, and then it renders as a
+/// fresh upload.
 #[test]
 fn a_material_made_to_reflect_in_place_needs_secondary_rays() {
     let mut matte = scene();
@@ -199,9 +200,9 @@ fn a_material_made_to_reflect_in_place_needs_secondary_rays() {
     let mut buffers = upload(&matte);
     assert!(!buffers.specialization.secondary_rays);
     let refused = renderer().write_materials(&buffers, &materials).unwrap_err().to_string();
-    assert!(refused.contains("secondary rays"), "{refused}");
+    assert!(refused.contains("eye rays only") && refused.contains("editable"), "{refused}");
 
-    buffers.specialization = buffers.specialization.with_secondary_rays();
+    buffers.specialization = buffers.specialization.editable();
     renderer().write_materials(&buffers, &materials).unwrap();
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
