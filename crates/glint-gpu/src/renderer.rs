@@ -148,7 +148,7 @@ pub struct SceneBuffers {
     /// Bytes of geometry, BVH, materials and lights on the device.
     pub scene_bytes: u64,
     /// What the kernels that render it are compiled for: the primitive kinds,
-    /// and the view when a command renders one alone.
+    /// the shading terms, and the view when a command renders one alone.
     pub specialization: Specialization,
 }
 
