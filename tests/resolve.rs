@@ -8,8 +8,6 @@ use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{display, Acceleration, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{View, MISS};
 
-const VIEWS: [View; 9] = View::ALL;
-
 /// Samples covering what the kernels write: radiance sums of several samples,
 /// zeros, unit normals, depths and misses, ids and −1, node counts, NaN.
 fn samples(count: usize) -> Vec<[f32; 4]> {
@@ -45,7 +43,7 @@ fn the_resolve_kernel_matches_its_cpu_twin() {
     let renderer = support::renderer();
     let (width, height) = (37, 11);
     let input = samples((width * height) as usize);
-    for view in VIEWS {
+    for view in View::ALL {
         for (tone_map, exposure, view_scale) in [(ToneMap::Clamp, 1.0, 50.0), (ToneMap::Reinhard, 2.5, 7.0), (ToneMap::Aces, 0.3, 300.0)] {
             let options = RenderOptions { view, tone_map, exposure, view_scale, ..RenderOptions::default() };
             let image = renderer.resolve_samples(&input, width, height, &options).unwrap();
@@ -75,7 +73,7 @@ fn the_resolve_kernel_matches_its_cpu_twin() {
 fn exposure_scales_light_views_in_every_output_and_data_views_in_none() {
     let renderer = support::renderer();
     let input = vec![[0.2, 0.1, 0.05, 1.0]];
-    for view in VIEWS {
+    for view in View::ALL {
         let at = |exposure| renderer.resolve_samples(&input, 1, 1, &RenderOptions { view, exposure, ..RenderOptions::default() }).unwrap();
         let (one, two) = (at(1.0), at(2.0));
         let expected = if view.is_data() { one.linear[0][0] } else { 2.0 * one.linear[0][0] };

@@ -335,7 +335,7 @@ impl Renderer {
         check_region(scene, region)?;
         self.pipelines.get(kernel_for(options.view), scene.specialization.dispatching(options.view))?;
         if !self.resolves_on_host {
-            self.create_pipelines(scene, &[Kernel::Resolve])?;
+            self.pipelines.get(Kernel::Resolve, Specialization::ALL)?;
         }
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = (|| {

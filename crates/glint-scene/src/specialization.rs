@@ -105,6 +105,7 @@ impl Specialization {
     }
 
     /// Whether a kernel of this specialisation renders `materials` rightly.
+    /// Every material counts, used or not (it cannot tell): stricter than `of`.
     pub fn covers(self, materials: &[GpuMaterial]) -> bool {
         let needs = |on: bool, term: fn(&GpuMaterial) -> bool| on || !materials.iter().any(term);
         needs(self.secondary_rays, spawns_secondary_rays) && needs(self.highlights, has_highlight) && needs(self.checker, is_checkered)
