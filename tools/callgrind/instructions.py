@@ -34,13 +34,13 @@ REPO = os.path.dirname(os.path.dirname(HERE))
 DRIVER = re.compile(r"libLLVM|libgallium|libvulkan_lvp")
 
 
-def count(glint, scene, view, width):
+def count(glint, scene, view, size):
     """(kernel, compile, other) instructions of one cold render."""
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "callgrind.out")
         env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
         command = ["valgrind", "--tool=callgrind", "--smc-check=all", f"--callgrind-out-file={out}",
-                   glint, "render", scene, "--view", view, "--width", str(width), "--height", str(width),
+                   glint, "render", scene, "--view", view, "--width", str(size), "--height", str(size),
                    "-o", os.path.join(work, "image.png")]
         run = subprocess.run(command, env=env, capture_output=True, text=True)
         if run.returncode != 0:
@@ -71,16 +71,15 @@ def main():
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--glint", nargs="+", default=[os.path.join(REPO, "target", "release", "glint")])
     args = parser.parse_args()
-    print(f"{args.scene}, {args.view} view, {args.size}x{args.size}; millions of instructions")
-    print(f"| glint | kernel | compile | other |\n|---|---:|---:|---:|")
+    print(f"{args.scene}, {args.view} view, {args.size}x{args.size}; millions of instructions, "
+          "and each count against the first build's")
+    print("| glint | kernel | vs first | compile | vs first | other |\n|---|---:|---:|---:|---:|---:|")
     first = None
     for glint in args.glint:
         kernel, compile_, other = count(glint, args.scene, args.view, args.size)
-        ratios = ""
-        if first:
-            ratios = f" ({kernel / first[0]:.3f}x, {compile_ / first[1]:.3f}x)"
         first = first or (kernel, compile_)
-        print(f"| {glint} | {kernel / 1e6:.1f} | {compile_ / 1e6:.1f} | {other / 1e6:.1f} |{ratios}")
+        print(f"| {glint} | {kernel / 1e6:.1f} | {kernel / first[0]:.3f}x "
+              f"| {compile_ / 1e6:.1f} | {compile_ / first[1]:.3f}x | {other / 1e6:.1f} |")
 
 
 if __name__ == "__main__":
