@@ -113,10 +113,8 @@ fn main() -> ExitCode {
             return ExitCode::from(exit::USAGE);
         }
     };
-    if !matches!(cli.command, Command::View(_)) {
-        // SAFETY: no thread has been started yet.
-        unsafe { glint_gpu::prefer_lavapipe_width() };
-    }
+    // SAFETY: no thread has been started yet.
+    unsafe { glint_gpu::prepare_lavapipe() };
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),

@@ -32,10 +32,18 @@ impl Drop for Group {
 }
 
 /// Runs `command` under a virtual X server in `dir`, in a process group of its
-/// own, its output piped.
-fn under_xvfb(command: &[&OsStr], dir: &Path) -> Group {
+/// own, its output piped, with the environment changed by `env` (a `None`
+/// value removes the variable).
+fn under_xvfb(command: &[&OsStr], dir: &Path, env: &[(&str, Option<&OsStr>)]) -> Group {
     let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
-    let child = Command::new("xvfb-run")
+    let mut xvfb = Command::new("xvfb-run");
+    for (name, value) in env {
+        match value {
+            Some(value) => xvfb.env(name, value),
+            None => xvfb.env_remove(name),
+        };
+    }
+    let child = xvfb
         .args(["-a", "-s", &screen])
         .args(command)
         .current_dir(dir)
@@ -85,7 +93,7 @@ fn save(pixels: &[[u8; 3]], path: &Path) {
 fn the_viewer_renders_under_xvfb_and_closes_cleanly() {
     let elsewhere = tempfile::tempdir().unwrap();
     let shell = r#"echo "$DISPLAY"; exec "$0" view"#;
-    let mut group = under_xvfb(&["sh".as_ref(), "-c".as_ref(), shell.as_ref(), env!("CARGO_BIN_EXE_glint").as_ref()], elsewhere.path());
+    let mut group = under_xvfb(&["sh".as_ref(), "-c".as_ref(), shell.as_ref(), env!("CARGO_BIN_EXE_glint").as_ref()], elsewhere.path(), &[]);
     let mut stderr = group.0.stderr.take().unwrap();
     let stderr = std::thread::spawn(move || {
         let mut text = String::new();
@@ -152,9 +160,9 @@ fn the_viewer_renders_under_xvfb_and_closes_cleanly() {
 }
 
 /// `glint view --first-image FILE` under Xvfb, in its own process group.
-fn first_image(scene: &Path) -> std::process::Output {
+fn first_image(scene: &Path, env: &[(&str, Option<&OsStr>)]) -> std::process::Output {
     let glint = env!("CARGO_BIN_EXE_glint").as_ref();
-    let mut group = under_xvfb(&[glint, "view".as_ref(), "--first-image".as_ref(), scene.as_os_str()], Path::new("."));
+    let mut group = under_xvfb(&[glint, "view".as_ref(), "--first-image".as_ref(), scene.as_os_str()], Path::new("."), env);
     let (stdout, stderr) = (group.0.stdout.take().unwrap(), group.0.stderr.take().unwrap());
     let read = |mut pipe: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
@@ -178,7 +186,7 @@ fn first_image(scene: &Path) -> std::process::Output {
 #[test]
 fn first_image_reports_the_start_up_and_closes_the_window() {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/first.toml");
-    let out = first_image(&scene);
+    let out = first_image(&scene, &[]);
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(out.status.success(), "{}: {stderr}", out.status);
     let seconds: f64 = stdout
@@ -195,9 +203,28 @@ fn first_image_of_a_broken_scene_is_its_error() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("broken.toml");
     std::fs::write(&scene, "[camera]\neye = [0, 1\n").unwrap();
-    let out = first_image(&scene);
+    let out = first_image(&scene, &[]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(3), "{stderr}");
     assert!(stderr.contains("broken.toml:2"), "the error names the file and line: {stderr}");
     assert!(out.stdout.is_empty(), "no time for an image never shown: {}", String::from_utf8_lossy(&out.stdout));
+}
+
+/// Mesa's shader cache does not tell kernels compiled at one SIMD width from
+/// those compiled at another, and the viewer crashed loading the other
+/// width's: glint gives each width a cache of its own.
+#[test]
+fn kernels_cached_at_one_vector_width_are_not_loaded_at_another() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/first.toml");
+    let cache = tempfile::tempdir().unwrap();
+    for width in [Some("256".as_ref()), None] {
+        let env = [
+            ("XDG_CACHE_HOME", Some(cache.path().as_os_str())),
+            (glint_gpu::SHADER_CACHE_ENV, None),
+            ("MESA_SHADER_CACHE_DISABLE", None),
+            (glint_gpu::LAVAPIPE_WIDTH_ENV, width),
+        ];
+        let out = first_image(&scene, &env);
+        assert!(out.status.success(), "at width {width:?}: {}: {}", out.status, String::from_utf8_lossy(&out.stderr));
+    }
 }

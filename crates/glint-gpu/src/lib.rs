@@ -10,6 +10,7 @@ mod device;
 pub mod display;
 mod frame;
 pub mod interactive;
+mod lavapipe;
 mod output;
 mod pipelines;
 pub mod probe;
@@ -20,7 +21,8 @@ mod sink;
 pub mod stitch;
 mod tiles;
 
-pub use device::{old_lavapipe_warning, prefer_lavapipe_width, Gpu, ADAPTER_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV};
+pub use device::{Gpu, ADAPTER_ENV};
+pub use lavapipe::{old_lavapipe_warning, prepare_lavapipe, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV, SHADER_CACHE_ENV};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
