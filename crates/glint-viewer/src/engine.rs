@@ -14,6 +14,7 @@ use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
+use glint_scene::gpu_types::{GpuLight, GpuMaterial};
 use glint_scene::Scene;
 
 /// Bands submitted but not finished; more would only queue up latency.
@@ -51,17 +52,29 @@ pub struct Canvas {
 impl Canvas {
     /// Builds the BVH, uploads `scene` for `width` × `height` and makes its texture.
     pub fn new(kernels: Arc<Kernels>, scene: &Scene, width: u32, height: u32, scene_generation: u64) -> Result<Self, GpuError> {
-        let mut prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
+        let prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
         // Progressive rendering needs the whole image on the device at once.
         prepared.buffers.check_whole_image()?;
-        // Materials and lights are edited in place: any material may come to
-        // reflect or shine, any light to fade.
-        prepared.buffers.specialization = prepared.buffers.specialization.editable();
-        // Here, off the UI thread: the shaded image, the debug views and picking.
+        // Here, off the UI thread: the shaded image, the debug views and picking,
+        // for the scene's own terms; the first edit beyond them widens them.
         kernels.renderer.create_pipelines(&prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
         Ok(Self { kernels, prepared, target, scene_generation, counter })
+    }
+
+    /// Makes the kernels take `materials` and `lights` before they are written:
+    /// an edit beyond the scene's own terms (a matte scene's first mirror, a
+    /// light that fades) switches to the kernels with every term, once. Until
+    /// then the kernels carry only what the scene uses, which lavapipe
+    /// compiles in about two thirds of the time, so the first image comes sooner.
+    pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight]) -> Result<(), GpuError> {
+        let specialization = &mut self.prepared.buffers.specialization;
+        if !specialization.covers(materials) || !specialization.covers_lights(lights) {
+            *specialization = specialization.editable();
+            self.kernels.renderer.create_pipelines(&self.prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
+        }
+        Ok(())
     }
 
     pub fn size(&self) -> (u32, u32) {

@@ -207,6 +207,7 @@ impl TracedImage {
         let scene = &doc.scene;
         let materials: Vec<_> = scene.materials.iter().map(|m| gpu_types::pack_material(&specular.apply(m))).collect();
         let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
+        canvas.take_edits(&materials, &lights)?;
         let renderer = &canvas.kernels.renderer;
         renderer.write_materials(&canvas.prepared.buffers, &materials)?;
         let buffers = &canvas.prepared.buffers;

@@ -83,6 +83,25 @@ fn clicking_a_sphere_selects_it_and_its_material_is_editable() {
     assert_eq!(h.state().selected_object(), None);
 }
 
+/// The kernels first carry only the scene's own terms (its light does not
+/// fade); an edit beyond them switches to the kernels with every term.
+#[test]
+fn a_light_made_to_fade_fades() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = harness(Some(write_scene(dir.path(), SCENE)), ShaderSource::Embedded);
+    settle(&mut h);
+    let before = image_of(&mut h);
+    h.get_by_label("attenuation").click();
+    h.run_steps(2);
+    h.get_by_label("1/d²").click();
+    h.step();
+    settle(&mut h);
+    assert!(h.state().errors().is_empty(), "{:?}", h.state().errors());
+    assert_eq!(h.state().scene().unwrap().lights[0].attenuation, glint_scene::Attenuation::InverseSquare);
+    let diff = mean_difference(&before, &image_of(&mut h));
+    assert!(diff > 2.0, "a light 6 units away at 1/d² is much dimmer, the image hardly changed: {diff}");
+}
+
 #[test]
 fn the_camera_orbits_flies_and_frames_the_scene() {
     let dir = tempfile::tempdir().unwrap();
