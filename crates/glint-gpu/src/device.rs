@@ -10,6 +10,28 @@ const NO_ADAPTER_HINT: &str = "no GPU adapter found: install a Vulkan driver; \
 without a GPU, lavapipe provides one (Debian/Ubuntu: apt-get install mesa-vulkan-drivers libvulkan1, \
 Mesa 25 or newer; on Debian 12 from bookworm-backports — `bash .ci/setup` does this)";
 
+/// The backends Glint looks for adapters on: those `WGPU_BACKEND` names, else
+/// the primary ones (Vulkan, Metal, DX12). Starting GL too would cost every
+/// process a second driver's start-up (a third of `glint info` on lavapipe)
+/// for an adapter ranked below them.
+pub fn backends() -> wgpu::Backends {
+    wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY)
+}
+
+/// Sorts adapters best first: a real GPU before a virtual or software one,
+/// Vulkan before other backends.
+pub fn adapter_rank(adapter: &wgpu::Adapter) -> (u8, bool) {
+    let info = adapter.get_info();
+    let kind = match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    };
+    (kind, info.backend != wgpu::Backend::Vulkan)
+}
+
 /// An open device with the adapter's own limits.
 pub struct Gpu {
     pub adapter: wgpu::Adapter,
@@ -24,7 +46,9 @@ impl Gpu {
     }
 
     async fn new_async() -> Result<Self, GpuError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        descriptor.backends = backends();
+        let instance = wgpu::Instance::new(descriptor);
         let adapter = Self::pick_adapter(&instance).await?;
         Self::open(adapter).await
     }
@@ -50,14 +74,7 @@ impl Gpu {
                     }
                 });
         }
-        let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
-            wgpu::DeviceType::DiscreteGpu => 0,
-            wgpu::DeviceType::IntegratedGpu => 1,
-            wgpu::DeviceType::VirtualGpu => 2,
-            wgpu::DeviceType::Other => 3,
-            wgpu::DeviceType::Cpu => 4,
-        };
-        adapters.sort_by_key(|a| (rank(a), a.get_info().backend != wgpu::Backend::Vulkan));
+        adapters.sort_by_key(adapter_rank);
         adapters.into_iter().next().ok_or_else(|| GpuError::NoAdapter(NO_ADAPTER_HINT.into()))
     }
 

@@ -21,7 +21,7 @@ mod sink;
 pub mod stitch;
 mod tiles;
 
-pub use device::{Gpu, ADAPTER_ENV};
+pub use device::{adapter_rank, backends, Gpu, ADAPTER_ENV};
 pub use lavapipe::{old_lavapipe_warning, prepare_lavapipe, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV, SHADER_CACHE_ENV};
 pub use frame::{Acceleration, Prepared};
 pub use output::{

@@ -137,8 +137,7 @@ neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set.";
 /// than wgpu's conservative defaults.
 pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
-    // GL has no compute shaders.
-    setup.instance_descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+    setup.instance_descriptor.backends = glint_gpu::backends();
     setup.native_adapter_selector = Some(Arc::new(choose_adapter));
     setup.device_descriptor = Arc::new(|adapter| wgpu::DeviceDescriptor {
         label: Some("glint view"),
@@ -162,18 +161,7 @@ fn choose_adapter(adapters: &[wgpu::Adapter], surface: Option<&wgpu::Surface<'_>
             .cloned()
             .ok_or_else(|| format!("{}={wanted} matches no usable adapter; found: {}", glint_gpu::ADAPTER_ENV, names.join(", ")));
     }
-    let rank = |a: &&wgpu::Adapter| {
-        let info = a.get_info();
-        let kind = match info.device_type {
-            wgpu::DeviceType::DiscreteGpu => 0,
-            wgpu::DeviceType::IntegratedGpu => 1,
-            wgpu::DeviceType::VirtualGpu => 2,
-            wgpu::DeviceType::Other => 3,
-            wgpu::DeviceType::Cpu => 4,
-        };
-        (kind, info.backend != wgpu::Backend::Vulkan)
-    };
-    usable.sort_by_key(rank);
+    usable.sort_by_key(|a| glint_gpu::adapter_rank(a));
     usable.first().map(|a| (*a).clone()).ok_or_else(|| {
         "no GPU adapter with compute shaders can draw to this window: install a Vulkan driver \
 (without a GPU, lavapipe: `bash .ci/setup`)"
