@@ -83,6 +83,15 @@ mod tests {
     }
 
     #[test]
+    fn tests_ask_for_the_width_glint_asks_for() {
+        let config = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../.cargo/config.toml")).unwrap();
+        let line = format!("{LAVAPIPE_WIDTH_ENV} = \"{LAVAPIPE_WIDTH}\"");
+        assert!(config.lines().any(|l| l == line), ".cargo/config.toml lacks `{line}`");
+        let cache = format!("target/lavapipe-{LAVAPIPE_WIDTH}");
+        assert!(config.contains(&cache), ".cargo/config.toml lacks the cache {cache}");
+    }
+
+    #[test]
     fn reads_mesa_versions() {
         assert_eq!(mesa_version("Mesa 25.0.7 (LLVM 19.1.7)"), Some((25, 0)));
         assert_eq!(mesa_version("Mesa 22.3.6 (LLVM 15.0.6)"), Some((22, 3)));
