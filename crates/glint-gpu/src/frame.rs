@@ -1,11 +1,12 @@
 //! The host pipeline from a loaded scene to uploaded buffers:
-//! validate → build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
+//! validate → cut large polygons → build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
 
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
 use glint_scene::gpu_types::{self, View};
+use glint_scene::polygon_split;
 use glint_scene::Scene;
 
 use crate::{GpuError, Renderer, SceneBuffers};
@@ -53,6 +54,7 @@ impl Renderer {
     /// of `width` × `height`.
     pub fn prepare(&self, scene: &Scene, width: u32, height: u32, acceleration: Acceleration) -> Result<Prepared, GpuError> {
         scene.validate()?;
+        let scene = &*polygon_split::split_large_polygons(scene);
         let bounds = gpu_types::primitive_bounds(scene);
         // The build includes laying the tree out for the kernel.
         let start = Instant::now();

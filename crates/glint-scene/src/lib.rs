@@ -13,6 +13,7 @@ mod light;
 mod material;
 pub mod nff;
 pub mod obj;
+pub mod polygon_split;
 mod scene;
 mod shape;
 pub mod spd;
