@@ -1,5 +1,5 @@
 //! The host pipeline from a loaded scene to uploaded buffers:
-//! validate → cut large polygons → build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
+//! cut large polygons → validate → build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
 
 use std::time::{Duration, Instant};
 
@@ -53,8 +53,9 @@ impl Renderer {
     /// Builds the acceleration structure, packs and uploads `scene` for an image
     /// of `width` × `height`.
     pub fn prepare(&self, scene: &Scene, width: u32, height: u32, acceleration: Acceleration) -> Result<Prepared, GpuError> {
-        scene.validate()?;
+        // Validated as the kernels get it, sectors and all.
         let scene = &*polygon_split::split_large_polygons(scene);
+        scene.validate()?;
         let bounds = gpu_types::primitive_bounds(scene);
         // The build includes laying the tree out for the kernel.
         let start = Instant::now();
