@@ -1,7 +1,7 @@
 //! Large polygons cut into sectors for the kernels. The polygon test walks
 //! every edge, so a gear face of 144 vertices costs a ray that reaches its box
 //! 145 steps; cut at its centre into sectors of a few edges each, the BVH
-//! leads a ray to the one or two it can hit (SPD gears: primary rays 2.4×,
+//! leads a ray to the one or two it can hit (SPD gears: primary rays 2.2×,
 //! Whitted frames 1.8× faster, the image unchanged).
 //!
 //! Only polygons star-shaped from their vertex centroid are cut: every edge
@@ -49,7 +49,7 @@ pub fn split_large_polygons(scene: &Scene) -> Cow<'_, Scene> {
 }
 
 /// The sectors of `vertices` around their centroid, each its stretch of the
-/// outline (in order, so the first vertex and the plane stay the polygon's)
+/// outline (in order, so it winds as the polygon does, its first vertex one of the polygon's)
 /// closed through the centre; `None` when the polygon is not star-shaped from
 /// the centroid.
 pub fn sectors(vertices: &[Vec3]) -> Option<Vec<Vec<Vec3>>> {
