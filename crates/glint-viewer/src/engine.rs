@@ -39,6 +39,10 @@ impl Kernels {
     }
 }
 
+/// The kernels a canvas dispatches: the shaded image and the debug views
+/// (trace), the data views and picking (primary).
+const CANVAS_KERNELS: [Kernel; 2] = [Kernel::Trace, Kernel::Primary];
+
 /// A scene on the device at one image size, with the texture its image goes to.
 pub struct Canvas {
     pub kernels: Arc<Kernels>,
@@ -57,7 +61,7 @@ impl Canvas {
         prepared.buffers.check_whole_image()?;
         // Here, off the UI thread: the shaded image, the debug views and picking,
         // for the scene's own terms; the first edit beyond them widens them.
-        kernels.renderer.create_pipelines(&prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
+        kernels.renderer.create_pipelines(&prepared.buffers, &CANVAS_KERNELS)?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
         Ok(Self { kernels, prepared, target, scene_generation, counter })
@@ -72,7 +76,7 @@ impl Canvas {
         let specialization = &mut self.prepared.buffers.specialization;
         if !specialization.covers(materials) || !specialization.covers_lights(lights) {
             *specialization = specialization.editable();
-            self.kernels.renderer.create_pipelines(&self.prepared.buffers, &[Kernel::Trace, Kernel::Primary])?;
+            self.kernels.renderer.create_pipelines(&self.prepared.buffers, &CANVAS_KERNELS)?;
         }
         Ok(())
     }
