@@ -19,21 +19,14 @@ struct RayFrame {
 }
 
 fn ray_frame(ray: Ray) -> RayFrame {
+    // Selects rather than branches: straight-line code for the four rays of a
+    // packet (packet.wgsl).
     let a = abs(ray.dir);
-    var kz = 2u;
-    if a.x > a.y && a.x > a.z {
-        kz = 0u;
-    } else if a.y > a.z {
-        kz = 1u;
-    }
-    var kx = (kz + 1u) % 3u;
-    var ky = (kx + 1u) % 3u;
+    let kz = select(select(2u, 1u, a.y > a.z), 0u, (a.x > a.y) & (a.x > a.z));
     // Swapping x and y for a ray down the axis keeps every winding's sign.
-    if ray.dir[kz] < 0.0 {
-        let k = kx;
-        kx = ky;
-        ky = k;
-    }
+    let swap = ray.dir[kz] < 0.0;
+    let kx = select((kz + 1u) % 3u, (kz + 2u) % 3u, swap);
+    let ky = select((kz + 2u) % 3u, (kz + 1u) % 3u, swap);
     let axes = vec3<u32>(0u, 1u, 2u);
     let ex = select(vec3<f32>(0.0), vec3<f32>(1.0), axes == vec3<u32>(kx));
     let ey = select(vec3<f32>(0.0), vec3<f32>(1.0), axes == vec3<u32>(ky));
@@ -42,16 +35,18 @@ fn ray_frame(ray: Ray) -> RayFrame {
     return RayFrame(ray.origin, ex - (ray.dir[kx] / dz) * ez, ey - (ray.dir[ky] / dz) * ez, (1.0 / dz) * ez);
 }
 
-// `p` in the frame: x and y across the ray, z the distance along it.
+// `p` in the frame: x and y across the ray, z the distance along it. The sums
+// are written out, in the order a packet's four-wide twin writes them, so that
+// a ray gets the same numbers alone as in a packet whatever a compiler does
+// with `dot`.
 fn to_frame(f: RayFrame, p: vec3<f32>) -> vec3<f32> {
     let q = p - f.origin;
-    return vec3<f32>(dot(q, f.x), dot(q, f.y), dot(q, f.z));
+    return vec3<f32>(q.x * f.x.x + q.y * f.x.y + q.z * f.x.z, q.x * f.y.x + q.y * f.y.y + q.z * f.y.z, q.x * f.z.x + q.y * f.z.y + q.z * f.z.z);
 }
 
 // Only x and y of `to_frame`, computed the same way: what an inside test needs.
 fn to_frame_xy(f: RayFrame, p: vec3<f32>) -> vec2<f32> {
-    let q = p - f.origin;
-    return vec2<f32>(dot(q, f.x), dot(q, f.y));
+    return to_frame(f, p).xy;
 }
 
 // Twice the signed area of (origin, a, b) in the frame's xy plane: positive
@@ -69,3 +64,4 @@ fn edge_sign(a: vec2<f32>, b: vec2<f32>) -> f32 {
     let right = a.y * b.x;
     return select(select(-1.0, 1.0, left > right), 0.0, left == right);
 }
+
