@@ -46,11 +46,24 @@ fn every_specialisation_validates() {
             Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }
         });
         let plain = Specialization { highlights: false, checker: false, attenuation: false, ..Specialization::ALL };
-        for specialization in kinds.chain(views).chain([plain]) {
+        let single_rays = views.map(|s| Specialization { packets: false, ..s });
+        for specialization in kinds.chain(views).chain(single_rays).chain([plain]) {
             if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization).unwrap().validate() {
                 panic!("{kernel:?} for {specialization}: {e}");
             }
         }
+    }
+}
+
+/// The host dispatches as many workgroups as the kernels' `@workgroup_size`
+/// (times the pixels an invocation traces) needs to cover a band.
+#[test]
+fn workgroup_sizes_are_the_hosts() {
+    for kernel in [Kernel::Trace, Kernel::Primary, Kernel::Diffuse] {
+        let module = module(kernel);
+        let entry = module.entry_points.iter().find(|e| e.name == kernel.entry_point()).unwrap();
+        let [x, y] = kernel.workgroup_size();
+        assert_eq!(entry.workgroup_size, [x, y, 1], "{kernel:?}");
     }
 }
 

@@ -10,7 +10,7 @@ fn diffuse_main(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let pixel = band_pixel(gid);
+    let pixel = band_pixel(gid, 1u);
     if in_band(pixel) {
         // The pixel centre, like the data views: the view is not averaged.
         let eye = camera_ray(vec2<f32>(pixel) + 0.5);

@@ -2,43 +2,78 @@
 // heat map) and picking, which need the eye ray's hit alone. A kernel of its
 // own, without the ray tree or shadow rays, compiles to far leaner code than
 // the trace kernel (register and private-memory pressure), so these views and
-// picking run faster and compile sooner.
-// import: bindings bvh camera checker dispatch primitive types
+// picking run faster and compile sooner. Specialised with PACKETS, each
+// invocation traces the eye rays of a 2×2 block of pixels as one packet
+// (packet.wgsl), except for the heat map, which counts each ray's own visits.
+// import: bindings bvh camera checker dispatch packet primitive types
 
-fn primary_view(eye: Ray) -> vec3<f32> {
-    let hit = traverse(eye, 0.0, MISS, false, false);
-    count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
-    if dispatch_view() == VIEW_HEATMAP {
-        return vec3<f32>(f32(hit.nodes));
-    }
-    if hit.t == MISS {
+// What `view` shows of the eye ray `eye`'s closest hit: primitive `prim` at
+// distance `t`, or MISS.
+fn primary_view(eye: Ray, t: f32, prim: u32) -> vec3<f32> {
+    if t == MISS {
         switch dispatch_view() {
             case VIEW_DEPTH: { return vec3<f32>(MISS); }
             case VIEW_ID: { return vec3<f32>(-1.0); }
             default: { return vec3<f32>(0.0); }
         }
     }
-    let p = prims[hit.prim];
+    let p = prims[prim];
     switch dispatch_view() {
-        case VIEW_DEPTH: { return vec3<f32>(hit.t); }
-        case VIEW_ALBEDO: { return material_at(p, eye.origin + hit.t * eye.dir).color; }
+        case VIEW_DEPTH: { return vec3<f32>(t); }
+        case VIEW_ALBEDO: { return material_at(p, eye.origin + t * eye.dir).color; }
         // x for display and AOVs (exact up to 2^24), y the index's own bits,
         // which picking reads: exact for any number of objects.
         case VIEW_ID: { return vec3<f32>(f32(p.object), bitcast<f32>(p.object), 0.0); }
-        default: { return surface_at(p, eye, hit.t).geometric; }
+        default: { return surface_at(p, eye, t).geometric; }
     }
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(8, 4)
 fn primary_main(
     @builtin(global_invocation_id) gid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let pixel = band_pixel(gid);
-    if in_band(pixel) {
-        // Data views take the pixel centre: they are not averaged.
-        accumulate(pixel, primary_view(camera_ray(vec2<f32>(pixel) + 0.5)));
+    // An invocation traces a 2×2 block of pixels with PACKETS, else one pixel;
+    // bit k of `block` stands for pixel k of it, left to right, top to bottom.
+    let corner = band_pixel(gid, select(1u, 2u, PACKETS));
+    let block = select(1u, 0xfu, PACKETS);
+    var hits: PacketHit;
+    var nodes = vec4<u32>(0u);
+    // The loops over the block's pixels step through its bits, a count the
+    // driver's compiler does not know: it keeps one copy of their bodies
+    // instead of four (a cold start pays for every copy).
+    if PACKETS && dispatch_view() != VIEW_HEATMAP {
+        hits = traverse_packet(packet(camera_rays4(corner)));
+    } else {
+        var left = block;
+        while left != 0u {
+            let k = firstTrailingBit(left);
+            left &= left - 1u;
+            let hit = traverse(camera_ray(vec2<f32>(block_pixel(corner, k)) + 0.5), 0.0, MISS, false, false);
+            hits.t[k] = hit.t;
+            hits.prim[k] = hit.prim;
+            nodes[k] = hit.nodes;
+        }
     }
+    var hit_count = 0u;
+    var miss_count = 0u;
+    var left = block;
+    while left != 0u {
+        let k = firstTrailingBit(left);
+        left &= left - 1u;
+        let pixel = block_pixel(corner, k);
+        if in_band(pixel) {
+            hit_count += u32(hits.t[k] != MISS);
+            miss_count += u32(hits.t[k] == MISS);
+            if dispatch_view() == VIEW_HEATMAP {
+                write_pixel(pixel, vec3<f32>(f32(nodes[k])));
+            } else {
+                write_pixel(pixel, primary_view(camera_ray(vec2<f32>(pixel) + 0.5), hits.t[k], hits.prim[k]));
+            }
+        }
+    }
+    count_rays(STAT_EYE_HIT, hit_count);
+    count_rays(STAT_EYE_MISS, miss_count);
     flush_ray_counts(wid, groups);
 }

@@ -9,7 +9,7 @@ fn trace_main(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let pixel = band_pixel(gid);
+    let pixel = band_pixel(gid, 1u);
     if in_band(pixel) {
         let color = trace_pixel(camera_ray(vec2<f32>(pixel) + sample_offset(pixel)));
         switch dispatch_view() {

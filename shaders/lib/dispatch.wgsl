@@ -8,6 +8,10 @@ fn count_ray(kind: u32) {
     local_stats[kind] += 1u;
 }
 
+fn count_rays(kind: u32, n: u32) {
+    local_stats[kind] += n;
+}
+
 // The rays this invocation has traced so far, of every kind.
 fn rays_counted() -> u32 {
     var total = 0u;
@@ -23,25 +27,45 @@ fn dispatch_view() -> u32 {
     return select(dispatch.view, ONLY_VIEW, ONLY_VIEW != ANY_VIEW);
 }
 
-// The pixel an invocation traces in the current band, if the band covers one.
-fn band_pixel(gid: vec3<u32>) -> vec2<u32> {
-    return gid.xy + dispatch.origin;
+// The pixel an invocation traces in the current band, if the band covers one;
+// the top-left pixel of its block for a kernel whose invocations trace blocks
+// of `side`×`side` pixels.
+fn band_pixel(gid: vec3<u32>, side: u32) -> vec2<u32> {
+    return side * gid.xy + dispatch.origin;
+}
+
+// Pixel k of the 2×2 block whose top-left pixel is `corner`, left to right,
+// top to bottom.
+fn block_pixel(corner: vec2<u32>, k: u32) -> vec2<u32> {
+    return corner + vec2<u32>(k & 1u, k >> 1u);
 }
 
 fn in_band(pixel: vec2<u32>) -> bool {
     return all(pixel < dispatch.end);
 }
 
+// The accumulation buffer holds the current tile alone, indexed from the
+// tile's corner.
+fn accum_index(pixel: vec2<u32>) -> u32 {
+    return (pixel.y - dispatch.tile_y) * dispatch.tile_width + (pixel.x - dispatch.tile_x);
+}
+
 // The first sample of a render writes its pixel (the sum starts from zero), so
-// it need not read it: a load per lane saved. The accumulation buffer holds
-// the current tile alone, indexed from the tile's corner.
+// it need not read it: a load per lane saved.
 fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
-    let index = (pixel.y - dispatch.tile_y) * dispatch.tile_width + (pixel.x - dispatch.tile_x);
+    let index = accum_index(pixel);
     if dispatch.sample_index == 0u {
         accum[index] = vec4<f32>(color, 1.0);
     } else {
         accum[index] += vec4<f32>(color, 1.0);
     }
+}
+
+// A data view's pixel is the value at its centre, the same at every sample,
+// so each sample writes it with a count of one (the resolve divides by the
+// count) rather than adding to it: no load, and no rounding of a sum.
+fn write_pixel(pixel: vec2<u32>, value: vec3<f32>) {
+    accum[accum_index(pixel)] = vec4<f32>(value, 1.0);
 }
 
 // Ray counts go to this workgroup's slot (of STAT_SLOTS): a workgroup barrier

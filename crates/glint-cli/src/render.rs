@@ -323,7 +323,8 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
 
     let view = args.view.view();
     let views: Vec<View> = std::iter::once(view).chain(args.aov.iter().map(|(aov, _)| aov.view())).collect();
-    prepared.buffers.specialization = prepared.buffers.specialization.for_views(&views);
+    let eye_rays = u64::from(width) * u64::from(height) * plan.frames.len() as u64;
+    prepared.buffers.specialization = prepared.buffers.specialization.for_views(&views).for_eye_rays(eye_rays);
     let options = RenderOptions {
         view,
         spp: if view.is_primary_only() { 1 } else { args.spp },

@@ -466,14 +466,17 @@ impl Renderer {
         region: DispatchParams,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), GpuError> {
-        let pipeline = self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view))?;
+        let kernel = kernel_for(view);
+        let specialization = scene.specialization.dispatching(view);
+        let pipeline = self.pipelines.get(kernel, specialization)?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &scene.scene_bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
-        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        let [across, down] = kernel.workgroup_size().map(|n| n * kernel.block_side(specialization));
+        pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);
         Ok(())
     }
 

@@ -45,6 +45,7 @@ sources![
     "lib/cone.wgsl",
     "lib/primitive.wgsl",
     "lib/bvh.wgsl",
+    "lib/packet.wgsl",
     "lib/reflect.wgsl",
     "lib/refract.wgsl",
     "lib/shadow.wgsl",
@@ -93,6 +94,17 @@ impl Kernel {
     /// against the files it is made of).
     pub fn is_specialised(self) -> bool {
         matches!(self, Kernel::Trace | Kernel::Primary | Kernel::Diffuse | Kernel::Probe)
+    }
+
+    /// The side of the square block of pixels one invocation traces: 2 for
+    /// the primary kernel with ray packets (Specialization::packets), else 1.
+    pub fn block_side(self, specialization: Specialization) -> u32 {
+        if self == Kernel::Primary && specialization.packets { 2 } else { 1 }
+    }
+
+    /// The invocations of one workgroup across and down (`@workgroup_size`).
+    pub fn workgroup_size(self) -> [u32; 2] {
+        if self == Kernel::Primary { [8, 4] } else { [8, 8] }
     }
 
     pub fn entry_point(self) -> &'static str {

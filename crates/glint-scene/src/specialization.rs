@@ -33,7 +33,16 @@ pub struct Specialization {
     /// The one view every dispatch renders, or `None`: each dispatch says
     /// (the viewer's kernels, a render that writes AOVs besides its image).
     pub view: Option<View>,
+    /// The primary kernel traces the eye rays of 2×2 blocks of pixels as ray
+    /// packets: faster per ray, slower to compile (see `for_eye_rays`).
+    pub packets: bool,
 }
+
+/// Eye rays from which a command's primary kernel traces packets: fewer trace
+/// sooner one at a time, whose kernel lavapipe compiles faster. Measured on
+/// tetra and teapot (docs/performance.md), packets repay their extra compile
+/// after about two million eye rays; a warm shader cache repays it at once.
+pub const PACKET_EYE_RAYS: u64 = 2_000_000;
 
 impl Specialization {
     /// Everything: for a kernel that must serve any scene.
@@ -48,6 +57,7 @@ impl Specialization {
         checker: true,
         attenuation: true,
         view: None,
+        packets: true,
     };
 
     /// What `scene` needs: its primitives' kinds, the terms of the materials
@@ -69,6 +79,7 @@ impl Specialization {
             checker: materials().any(is_checkered),
             attenuation: scene.lights.iter().any(fades),
             view: None,
+            packets: true,
         };
         for p in &scene.prims {
             match p.kind() {
@@ -96,6 +107,12 @@ impl Specialization {
     pub fn for_views(self, views: &[View]) -> Specialization {
         let one = views.split_first().filter(|(first, rest)| rest.iter().all(|v| v == *first));
         Specialization { view: one.map(|(&view, _)| view), ..self }
+    }
+
+    /// For a command that traces `eye_rays` eye rays with its primary kernel
+    /// in all (a one-off render): packets from `PACKET_EYE_RAYS` on.
+    pub fn for_eye_rays(self, eye_rays: u64) -> Specialization {
+        Specialization { packets: eye_rays >= PACKET_EYE_RAYS, ..self }
     }
 
     /// The specialisation a dispatch of `view` runs: this one when it is for
@@ -134,6 +151,7 @@ impl Specialization {
     pub fn wgsl(self) -> String {
         let mut wgsl: String = self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect();
         wgsl.push_str(&format!("const ONLY_VIEW: u32 = {}u;\n", self.view.map_or(ANY_VIEW, |view| view as u32)));
+        wgsl.push_str(&format!("const PACKETS: bool = {};\n", self.packets));
         wgsl
     }
 }
@@ -173,6 +191,9 @@ impl std::fmt::Display for Specialization {
         if let Some(view) = self.view {
             write!(f, ", {} view only", format!("{view:?}").to_lowercase())?;
         }
+        if !self.packets {
+            f.write_str(", single eye rays")?;
+        }
         Ok(())
     }
 }
@@ -210,6 +231,7 @@ mod tests {
             checker: false,
             attenuation: false,
             view: None,
+            packets: true,
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones");
@@ -272,5 +294,15 @@ mod tests {
         assert_eq!(kinds.dispatching(View::Normal), kinds);
         assert!(depth.wgsl().contains(&format!("const ONLY_VIEW: u32 = {}u;", View::Depth as u32)));
         assert!(kinds.wgsl().contains(&format!("const ONLY_VIEW: u32 = {ANY_VIEW}u;")));
+    }
+
+    #[test]
+    fn a_one_off_render_traces_packets_only_when_they_repay_their_compile() {
+        let kinds = Specialization::of(&scene(&[PRIM_TRIANGLE], 0.0));
+        assert!(kinds.packets && kinds.wgsl().contains("const PACKETS: bool = true;"));
+        let small = kinds.for_eye_rays(512 * 512);
+        assert!(!small.packets && small.wgsl().contains("const PACKETS: bool = false;"));
+        assert_eq!(small.to_string(), "triangles, eye rays only, single eye rays");
+        assert!(kinds.for_eye_rays(PACKET_EYE_RAYS).packets);
     }
 }

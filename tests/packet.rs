@@ -1,0 +1,92 @@
+//! Ray packets (shaders/lib/packet.wgsl): with `Specialization::packets` the
+//! primary kernel traces the eye rays of each 2×2 block of pixels together,
+//! and each ray must get exactly the hit it gets alone. Every data view and
+//! the ray counts are held to the kernel that traces single rays, bit for bit,
+//! for every kind of primitive, both projections, and blocks cut by the
+//! image's edge.
+
+mod support;
+
+use glint_gpu::{Acceleration, RenderOptions};
+use glint_scene::gpu_types::View;
+use glint_scene::Scene;
+
+/// Width and height odd, so the last column and row of blocks hang over the edge.
+const SIZE: (u32, u32) = (37, 27);
+
+/// Returns how many eye rays missed.
+fn assert_packets_trace_as_single_rays(scene: &Scene, what: &str) -> u64 {
+    let mut scene = scene.clone();
+    (scene.width, scene.height) = SIZE;
+    let renderer = support::renderer();
+    let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+    let mut misses = 0;
+    for view in View::ALL.into_iter().filter(|v| v.is_primary_only()) {
+        let mut render = |packets| {
+            prepared.buffers.specialization.packets = packets;
+            let options = RenderOptions { view, ..Default::default() };
+            renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
+        };
+        let (single, single_stats) = render(false);
+        let (packets, packet_stats) = render(true);
+        support::assert_images_equal(&packets.linear, &single.linear, 0, &format!("{what}, {view:?} view"));
+        assert_eq!(packet_stats, single_stats, "{what}, {view:?} view");
+        misses = single_stats.eye_miss;
+    }
+    assert!(misses < u64::from(SIZE.0 * SIZE.1), "{what}: no ray hit anything");
+    misses
+}
+
+#[test]
+fn packets_of_every_primitive_kind_hit_what_single_rays_hit() {
+    // tetra: triangles; gears: polygons cut into sectors; balls: spheres and a
+    // polygon; tree: cones, cylinders and spheres; rings: cylinders; mount:
+    // triangles and spheres.
+    let mut misses = 0;
+    for name in ["tetra:2", "gears:1", "balls:1", "tree:2", "rings:1", "mount:1"] {
+        let scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
+        misses += assert_packets_trace_as_single_rays(&scene, name);
+    }
+    for seed in 0..4 {
+        misses += assert_packets_trace_as_single_rays(&glint_reference::random_scene(seed), &format!("random scene {seed}"));
+    }
+    assert!(misses > 0, "no eye ray missed: packets of hits and misses were not tried");
+}
+
+#[test]
+fn packets_hit_what_single_rays_hit_through_an_orthographic_camera_and_on_a_plane() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/gallery");
+    let scene = glint_scene::load(&dir.join("orthographic.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert_packets_trace_as_single_rays(&scene, "orthographic");
+    let scene = support::parse(
+        r#"
+[image]
+width = 8
+height = 8
+
+[camera]
+eye = [0.5, 2, 6]
+look_at = [0, 0, 0]
+fov = 50
+
+[[light]]
+type = "point"
+position = [1, 6, 2]
+
+[[object]]
+type = "plane"
+point = [0, 0, 0]
+normal = [0, 1, 0]
+
+[[object]]
+type = "sphere"
+center = [-0.6, 0.5, 0]
+radius = 0.6
+
+[[object]]
+type = "triangle"
+vertices = [[0.2, 0, 1], [1.6, 0, 1], [0.9, 1.4, 0.6]]
+"#,
+    );
+    assert_packets_trace_as_single_rays(&scene, "plane, sphere and triangle");
+}
