@@ -103,20 +103,10 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 let right_far = decode(grid, node.quantized, far_byte + 16u);
                 let t_left = slab_entry((left_near - ray.origin) * inv_dir, (left_far - ray.origin) * inv_dir, t_max);
                 let t_right = slab_entry((right_near - ray.origin) * inv_dir, (right_far - ray.origin) * inv_dir, t_max);
-                let first = node.children & ~(LEAF | RIGHT_LEAF);
-                let left = first | (node.children & LEAF);
-                let right = (first + 1u) | ((node.children << 1u) & LEAF);
-                if min(t_left, t_right) == MISS {
-                    index = NEEDS_POP;
-                } else {
-                    let near_first = t_left <= t_right;
-                    if max(t_left, t_right) != MISS {
-                        stack_node[top] = select(left, right, near_first);
-                        stack_t[top] = max(t_left, t_right);
-                        top++;
-                    }
-                    index = select(right, left, near_first);
+                index = descend(node, t_left, t_right, &top);
+                if index != NEEDS_POP {
                     // Descending: the child's grid is the one over the box just tested.
+                    let near_first = t_left <= t_right;
                     let near = select(right_near, left_near, near_first);
                     let far = select(right_far, left_far, near_first);
                     let negative = near_byte != vec3<u32>(0u);
@@ -137,6 +127,25 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
         index = pop(&top, t_max, &grid);
     }
     return hit;
+}
+
+// The walk's step down from an interior node whose children it enters at
+// distances t_left and t_right (MISS: not at all): the nearer child entered,
+// the farther pushed with its distance when both are, NEEDS_POP when neither.
+fn descend(node: GpuNode, t_left: f32, t_right: f32, top: ptr<function, u32>) -> u32 {
+    if min(t_left, t_right) == MISS {
+        return NEEDS_POP;
+    }
+    let first = node.children & ~(LEAF | RIGHT_LEAF);
+    let left = first | (node.children & LEAF);
+    let right = (first + 1u) | ((node.children << 1u) & LEAF);
+    let near_first = t_left <= t_right;
+    if max(t_left, t_right) != MISS {
+        stack_node[*top] = select(left, right, near_first);
+        stack_t[*top] = max(t_left, t_right);
+        *top += 1u;
+    }
+    return select(right, left, near_first);
 }
 
 // Tests primitives first .. first + count (a leaf's, or the infinite planes)

@@ -109,19 +109,9 @@ fn traverse_packet(p: Packet) -> PacketHit {
                 let right_hi = decode(grid, node.quantized, vec3<u32>(24u));
                 let t_left = min4(packet_entry(p, left_lo, left_hi, hit.t));
                 let t_right = min4(packet_entry(p, right_lo, right_hi, hit.t));
-                let first = node.children & ~(LEAF | RIGHT_LEAF);
-                let left = first | (node.children & LEAF);
-                let right = (first + 1u) | ((node.children << 1u) & LEAF);
-                if min(t_left, t_right) == MISS {
-                    index = NEEDS_POP;
-                } else {
+                index = descend(node, t_left, t_right, &top);
+                if index != NEEDS_POP {
                     let near_first = t_left <= t_right;
-                    if max(t_left, t_right) != MISS {
-                        stack_node[top] = select(left, right, near_first);
-                        stack_t[top] = max(t_left, t_right);
-                        top++;
-                    }
-                    index = select(right, left, near_first);
                     grid = derived_grid(select(right_lo, left_lo, near_first), select(right_hi, left_hi, near_first));
                 }
                 if (index & LEAF) != 0u {
