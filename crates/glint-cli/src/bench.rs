@@ -30,8 +30,9 @@ pub struct BenchArgs {
     #[arg(long)]
     json: bool,
     /// Measure what a first render pays instead: each kernel's pipeline
-    /// creation for each scene's primitive kinds (the driver's compile), and
-    /// the first frame against a warm one. Run with
+    /// creation for each scene's primitive kinds, as a one-off render of that
+    /// size compiles it (the driver's compile), and the first frame against a
+    /// warm one. Run with
     /// MESA_SHADER_CACHE_DISABLE=true to see what a fresh machine pays.
     #[arg(long)]
     cold: bool,
