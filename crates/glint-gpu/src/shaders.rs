@@ -102,7 +102,8 @@ impl Kernel {
         if self == Kernel::Primary && specialization.packets { 2 } else { 1 }
     }
 
-    /// The invocations of one workgroup across and down (`@workgroup_size`).
+    /// The invocations of one workgroup across and down (`@workgroup_size`)
+    /// of a kernel that traces row bands (trace, primary, diffuse).
     pub fn workgroup_size(self) -> [u32; 2] {
         if self == Kernel::Primary { [8, 4] } else { [8, 8] }
     }
