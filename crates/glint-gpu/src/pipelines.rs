@@ -43,7 +43,7 @@ impl Pipelines {
     /// The pipeline of `kernel` for scenes of `specialization`, created now if
     /// it has not been.
     pub fn get(&self, kernel: Kernel, specialization: Specialization) -> Result<wgpu::ComputePipeline, GpuError> {
-        let specialization = if kernel.is_specialised() { specialization } else { Specialization::ALL };
+        let specialization = kernel.compiled_for(specialization);
         let key = (kernel, specialization);
         if let Some(pipeline) = self.built.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
             return Ok(pipeline.clone());

@@ -96,6 +96,18 @@ impl Kernel {
         matches!(self, Kernel::Trace | Kernel::Primary | Kernel::Diffuse | Kernel::Probe)
     }
 
+    /// What this kernel is compiled for when a scene's kernels are
+    /// specialised to `specialization`: only what changes its code, so that
+    /// its renders share one pipeline (and one entry of Mesa's disk cache)
+    /// whatever else differs. Only the primary kernel traces packets.
+    pub fn compiled_for(self, specialization: Specialization) -> Specialization {
+        match self {
+            Kernel::Primary => specialization,
+            _ if self.is_specialised() => Specialization { packets: true, ..specialization },
+            _ => Specialization::ALL,
+        }
+    }
+
     /// The side of the square block of pixels one invocation traces: 2 for
     /// the primary kernel with ray packets (Specialization::packets), else 1.
     pub fn block_side(self, specialization: Specialization) -> u32 {
