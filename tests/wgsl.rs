@@ -67,6 +67,38 @@ fn workgroup_sizes_are_the_hosts() {
     }
 }
 
+/// The places in `module` that call the function named `name`.
+fn call_sites(module: &naga::Module, name: &str) -> usize {
+    fn count(block: &naga::Block, module: &naga::Module, name: &str) -> usize {
+        block
+            .iter()
+            .map(|statement| match statement {
+                naga::Statement::Call { function, .. } => usize::from(module.functions[*function].name.as_deref() == Some(name)),
+                naga::Statement::Block(b) => count(b, module, name),
+                naga::Statement::If { accept, reject, .. } => count(accept, module, name) + count(reject, module, name),
+                naga::Statement::Switch { cases, .. } => cases.iter().map(|c| count(&c.body, module, name)).sum(),
+                naga::Statement::Loop { body, continuing, .. } => count(body, module, name) + count(continuing, module, name),
+                _ => 0,
+            })
+            .sum()
+    }
+    let functions = module.functions.iter().map(|(_, f)| &f.body);
+    functions.chain(module.entry_points.iter().map(|e| &e.function.body)).map(|body| count(body, module, name)).sum()
+}
+
+/// lavapipe inlines every call, so each call of the BVH walk is a copy of the
+/// walk and its primitive tests in the compiled kernel, which a cold start
+/// pays for. The ray tree traces its rays and their shadow rays through one
+/// call, and the walk tests a leaf's primitives through one call.
+#[test]
+fn the_ray_tree_walks_the_bvh_through_one_call() {
+    for kernel in [Kernel::Trace, Kernel::Probe] {
+        let module = module(kernel);
+        assert_eq!(call_sites(&module, "traverse"), 1, "{kernel:?}");
+        assert_eq!(call_sites(&module, "intersect_prim"), 1, "{kernel:?}");
+    }
+}
+
 /// `shaders/` holds exactly the embedded files, each reached by some kernel.
 #[test]
 fn every_shader_file_is_embedded_and_part_of_a_kernel() {

@@ -163,20 +163,20 @@ fn test_prims(
     tinted: bool,
 ) -> bool {
     for (var i = first; i < first + count; i++) {
+        // One intersection call for both queries: the driver inlines each
+        // call, and the trace kernel's one walk serves both (ray_tree.wgsl).
+        let t = intersect_prim(i, ray, frame, t_min, select(*t_max, next_up(*t_max), !any_hit));
+        if t == MISS {
+            continue;
+        }
         if !any_hit {
             // Equal distances (coincident surfaces) go to the lower object
             // id, so the winner does not depend on the order of visits.
-            let t = intersect_prim(i, ray, frame, t_min, next_up(*t_max));
-            let closer = t < *t_max || (t == *t_max && (*hit).t != MISS && prims[i].object < prims[(*hit).prim].object);
-            if t != MISS && closer {
+            if t < *t_max || (t == *t_max && (*hit).t != MISS && prims[i].object < prims[(*hit).prim].object) {
                 *t_max = t;
                 (*hit).t = t;
                 (*hit).prim = i;
             }
-            continue;
-        }
-        let t = intersect_prim(i, ray, frame, t_min, *t_max);
-        if t == MISS {
             continue;
         }
         let m = materials[prim_material(prims[i])];

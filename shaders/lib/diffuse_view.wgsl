@@ -1,5 +1,5 @@
 // The `diffuse` debug view (primary kernel): direct diffuse light alone.
-// import: bindings bvh primitive types
+// import: bindings bvh primitive shadow types
 
 // Direct diffuse light only,
 //   Σ_lights k_d·O_d·I_l·max(0, N·L)·V/d²
@@ -23,8 +23,8 @@ fn diffuse_only(s: Surface, m: GpuMaterial) -> vec3<f32> {
         if n_dot_l <= 0.0 || dot(s.geometric, l) <= 0.0 {
             continue;
         }
-        let eps = ray_epsilon(s.point);
-        let blocked = traverse(Ray(s.point + s.geometric * eps, l), 0.0, distance - eps, true, false).t != MISS;
+        let shadow = shadow_ray(s.point, s.geometric, l, distance);
+        let blocked = traverse(shadow.ray, 0.0, shadow.t_max, true, false).t != MISS;
         if !blocked {
             color += m.kd * m.color * light.radiance * n_dot_l * falloff;
         }

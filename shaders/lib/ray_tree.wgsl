@@ -4,7 +4,13 @@
 // colour contributes to the pixel. The tree is handed, ray by ray and term by
 // term, to the kernel's `note_` functions: the trace kernel's do nothing, the
 // probe kernel's record the tree for `glint probe` and the viewer's inspector.
-// import: bindings bvh checker dispatch primitive reflect refract shade types
+//
+// Every ray of the tree and every shadow ray goes through one call of
+// `traverse`: a loop whose step is one query, the next ray of the tree or the
+// shadow ray towards the next light of the surface being shaded. The driver
+// inlines a call's whole walk and primitive tests, so one call site compiles
+// to about two thirds of the code of two (a cold start pays for every copy).
+// import: bindings bvh checker dispatch primitive reflect refract shade shadow types
 
 struct PendingRay {
     ray: Ray,
@@ -23,88 +29,142 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
     var top = 0u;
     var pending = PendingRay(eye, vec3<f32>(1.0), 1u, RAY_EYE, NO_RAY);
     var color = vec3<f32>(0.0);
+    // The surface `pending` hit, while it is shaded: its distance, point and
+    // material, the id `note_ray` gave the ray, the local colour so far and
+    // the light whose shadow ray is traced next (light_count: none left).
+    var t_hit: f32;
+    var s: Surface;
+    var m: GpuMaterial;
+    var id: u32;
+    var local: vec3<f32>;
+    var light: LitLight;
+    // The query traced next: `pending`'s closest hit, or a shadow ray's any hit.
+    var shadow_query = false;
+    var query = ShadowRay(eye, MISS);
     loop {
-        let ray = pending.ray;
-        let hit = traverse(ray, 0.0, MISS, false, false);
-        deepest = max(deepest, pending.depth);
-        if pending.depth == 1u {
-            count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
-        }
-        let id = note_ray(pending.kind, pending.parent, pending.depth, ray, pending.weight, hit.t);
-        if hit.t == MISS {
-            color += pending.weight * uniforms.background;
-            continue;
-        }
-        let p = prims[hit.prim];
-        let s = surface_at(p, ray, hit.t);
-        let m = material_at(p, s.point);
-        note_hit(s, hit.prim);
-        let local = shade(s, m, -ray.dir);
-        var weight = pending.weight;
-        if (uniforms.flags & FLAG_DEPTH_CUE) != 0u {
-            let so = depth_cue_scale(hit.t);
-            note_cue(so);
-            color += weight * (so * local + (1.0 - so) * uniforms.depth_cue_color);
-            weight *= so;
+        var hit: Hit;
+        if shadow_query && !shadows_traced() {
+            hit = unshadowed();
         } else {
-            color += weight * local;
+            hit = traverse(query.ray, 0.0, query.t_max, shadow_query, shadow_query && shadows_tinted());
         }
-        // A kernel for a scene whose materials neither reflect nor transmit
-        // (HAS_SECONDARY_RAYS false) compiles without the rest.
-        if !HAS_SECONDARY_RAYS || pending.depth >= uniforms.max_depth {
+        var shading = true;
+        var first_light = 0u;
+        if shadow_query {
+            local += light_term(light, s, m, -pending.ray.dir, hit);
+            first_light = light.index + 1u;
+        } else {
+            deepest = max(deepest, pending.depth);
+            if pending.depth == 1u {
+                count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
+            }
+            id = note_ray(pending.kind, pending.parent, pending.depth, pending.ray, pending.weight, hit.t);
+            if hit.t == MISS {
+                color += pending.weight * uniforms.background;
+                shading = false;
+            } else {
+                let p = prims[hit.prim];
+                t_hit = hit.t;
+                s = surface_at(p, pending.ray, hit.t);
+                m = material_at(p, s.point);
+                note_hit(s, hit.prim);
+                local = ambient_term(m);
+            }
+        }
+        if shading {
+            light = next_lit_light(s, first_light);
+        }
+        if shading && light.index < uniforms.light_count {
+            if shadows_traced() {
+                count_ray(STAT_SHADOW);
+            }
+            query = shadow_ray(s.point, s.geometric, light.sample.l, light.sample.distance);
+            shadow_query = true;
             continue;
         }
-
-        // Entering when the ray meets the front of the surface; the outside is air.
-        let eta = select(1.0 / m.ior, m.ior, s.backface);
-        var k_reflect = m.reflect;
-        var k_refract = select(vec3<f32>(0.0), m.transmit, (uniforms.flags & FLAG_REFRACTIONS) != 0u);
-        let refracted = refract_dir(ray.dir, s.shading, eta);
-        note_refraction(eta, any(k_refract > vec3<f32>(0.0)) && refracted.w == 0.0);
-        if any(k_refract > vec3<f32>(0.0)) {
-            if refracted.w == 0.0 {
-                // Total internal reflection: the transmitted share is reflected.
-                k_reflect += k_refract;
-                k_refract = vec3<f32>(0.0);
-            } else if (m.flags & MATERIAL_FRESNEL) != 0u {
-                let cos_i = -dot(ray.dir, s.shading);
-                let cos_t = -dot(refracted.xyz, s.shading);
-                // Schlick with the cosine on the less dense side.
-                let f = schlick(vec3<f32>(dielectric_f0(1.0, m.ior)), select(cos_i, cos_t, eta > 1.0)).x;
-                k_reflect += k_refract * f;
-                k_refract *= 1.0 - f;
-            }
+        if shading {
+            push_secondary_rays(pending, t_hit, s, m, id, local, &color, &stack, &top);
         }
-        // With reflections off no reflected ray is traced at all, including the
-        // share that total internal reflection or Fresnel moved into it.
-        if (uniforms.flags & FLAG_REFLECTIONS) == 0u {
-            k_reflect = vec3<f32>(0.0);
+        // Without secondary rays the tree is the eye ray alone, and the
+        // kernel compiles without the stack (a sixth less to compile).
+        if !HAS_SECONDARY_RAYS || top == 0u {
+            break;
         }
-        let eps = ray_epsilon(s.point);
-        let w_reflect = weight * k_reflect;
-        if any(w_reflect > vec3<f32>(uniforms.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
-            count_ray(STAT_REFLECT);
-            let r = Ray(s.point + s.geometric * eps, reflect_dir(ray.dir, s.shading));
-            stack[top] = PendingRay(r, w_reflect, pending.depth + 1u, RAY_REFLECT, id);
-            top++;
-        }
-        let w_refract = weight * k_refract;
-        if any(w_refract > vec3<f32>(uniforms.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
-            count_ray(STAT_REFRACT);
-            let r = Ray(s.point - s.geometric * eps, refracted.xyz);
-            stack[top] = PendingRay(r, w_refract, pending.depth + 1u, RAY_REFRACT, id);
-            top++;
-        }
-        continuing {
-            // Without secondary rays the tree is the eye ray alone, and the
-            // kernel compiles without the stack (a sixth less to compile).
-            let done = !HAS_SECONDARY_RAYS || top == 0u;
-            if !done {
-                top--;
-                pending = stack[top];
-            }
-            break if done;
-        }
+        top--;
+        pending = stack[top];
+        query = ShadowRay(pending.ray, MISS);
+        shadow_query = false;
     }
     return color;
+}
+
+// Adds the shaded surface's local colour `local` (depth-cued) to `color` and
+// pushes the reflected and refracted rays it spawns, down to the maximum depth.
+fn push_secondary_rays(
+    pending: PendingRay,
+    t_hit: f32,
+    s: Surface,
+    m: GpuMaterial,
+    id: u32,
+    local: vec3<f32>,
+    color: ptr<function, vec3<f32>>,
+    stack: ptr<function, array<PendingRay, RAY_STACK>>,
+    top: ptr<function, u32>,
+) {
+    let ray = pending.ray;
+    var weight = pending.weight;
+    if (uniforms.flags & FLAG_DEPTH_CUE) != 0u {
+        let so = depth_cue_scale(t_hit);
+        note_cue(so);
+        *color += weight * (so * local + (1.0 - so) * uniforms.depth_cue_color);
+        weight *= so;
+    } else {
+        *color += weight * local;
+    }
+    // A kernel for a scene whose materials neither reflect nor transmit
+    // (HAS_SECONDARY_RAYS false) compiles without the rest.
+    if !HAS_SECONDARY_RAYS || pending.depth >= uniforms.max_depth {
+        return;
+    }
+
+    // Entering when the ray meets the front of the surface; the outside is air.
+    let eta = select(1.0 / m.ior, m.ior, s.backface);
+    var k_reflect = m.reflect;
+    var k_refract = select(vec3<f32>(0.0), m.transmit, (uniforms.flags & FLAG_REFRACTIONS) != 0u);
+    let refracted = refract_dir(ray.dir, s.shading, eta);
+    note_refraction(eta, any(k_refract > vec3<f32>(0.0)) && refracted.w == 0.0);
+    if any(k_refract > vec3<f32>(0.0)) {
+        if refracted.w == 0.0 {
+            // Total internal reflection: the transmitted share is reflected.
+            k_reflect += k_refract;
+            k_refract = vec3<f32>(0.0);
+        } else if (m.flags & MATERIAL_FRESNEL) != 0u {
+            let cos_i = -dot(ray.dir, s.shading);
+            let cos_t = -dot(refracted.xyz, s.shading);
+            // Schlick with the cosine on the less dense side.
+            let f = schlick(vec3<f32>(dielectric_f0(1.0, m.ior)), select(cos_i, cos_t, eta > 1.0)).x;
+            k_reflect += k_refract * f;
+            k_refract *= 1.0 - f;
+        }
+    }
+    // With reflections off no reflected ray is traced at all, including the
+    // share that total internal reflection or Fresnel moved into it.
+    if (uniforms.flags & FLAG_REFLECTIONS) == 0u {
+        k_reflect = vec3<f32>(0.0);
+    }
+    let eps = ray_epsilon(s.point);
+    let w_reflect = weight * k_reflect;
+    if any(w_reflect > vec3<f32>(uniforms.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
+        count_ray(STAT_REFLECT);
+        let r = Ray(s.point + s.geometric * eps, reflect_dir(ray.dir, s.shading));
+        (*stack)[*top] = PendingRay(r, w_reflect, pending.depth + 1u, RAY_REFLECT, id);
+        *top += 1u;
+    }
+    let w_refract = weight * k_refract;
+    if any(w_refract > vec3<f32>(uniforms.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
+        count_ray(STAT_REFRACT);
+        let r = Ray(s.point - s.geometric * eps, refracted.xyz);
+        (*stack)[*top] = PendingRay(r, w_refract, pending.depth + 1u, RAY_REFRACT, id);
+        *top += 1u;
+    }
 }

@@ -3,7 +3,9 @@
 // with specular k_s·O_s·(R·V)^n (Phong) or k_s·O_s·(N·H)^n (Blinn-Phong), O_s white
 // when the material has none, or Schlick's F(V·H) with a coloured F0 in place
 // of k_s·O_s for metallic highlights. S is the shadow term, att the attenuation.
-// import: bindings primitive reflect shadow types
+// The sum is taken one light at a time (`light_term`), since S comes from a
+// shadow ray that the ray tree traces in between (lib/ray_tree.wgsl).
+// import: bindings bvh primitive reflect types
 
 fn light_attenuation(light: GpuLight, d: f32) -> f32 {
     // A kernel for a scene whose lights do not fade (HAS_ATTENUATION false,
@@ -37,47 +39,72 @@ fn specular_term(m: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> ve
     return m.ks * m.specular_color * lobe;
 }
 
-// `v` points from the surface towards the viewer.
-// Each term is also handed to the kernel's `note_ambient` and `note_light`,
-// which the probe kernel records and the others ignore.
-fn shade(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
-    var color = m.ka * uniforms.ambient * m.color;
-    note_ambient(color);
-    for (var i = 0u; i < uniforms.light_count; i++) {
-        let light = lights[i];
-        var l: vec3<f32>;
-        var distance: f32;
-        var att = 1.0;
-        if light.kind == LIGHT_DIRECTIONAL {
-            l = -light.position;
-            distance = MISS;
-        } else {
-            let to_light = light.position - s.point;
-            distance = length(to_light);
-            l = to_light / distance;
-            att = light_attenuation(light, distance);
-        }
-        let n_dot_l = dot(s.shading, l);
-        // A surface facing away from the light gets nothing and casts no shadow ray.
-        if n_dot_l <= 0.0 || dot(s.geometric, l) <= 0.0 {
-            continue;
-        }
-        let shadow = light_visibility(s.point, s.geometric, l, distance);
-        if all(shadow.transmittance == vec3<f32>(0.0)) {
-            note_light(i, s.point, l, distance, n_dot_l, shadow, vec3<f32>(0.0), vec3<f32>(0.0));
-            continue;
-        }
-        let reach = att * shadow.transmittance * light.radiance;
-        let diffuse = reach * m.kd * m.color * n_dot_l;
-        // Without highlights in the scene (HAS_HIGHLIGHTS false) the term is 0.
-        var specular = vec3<f32>(0.0);
-        if HAS_HIGHLIGHTS {
-            specular = reach * specular_term(m, s.shading, l, v);
-        }
-        note_light(i, s.point, l, distance, n_dot_l, shadow, diffuse, specular);
-        color += diffuse + specular;
+// A light as the surface point sees it: the unit direction L towards it, its
+// distance (MISS for a directional light), att and N·L.
+struct LightSample {
+    l: vec3<f32>,
+    distance: f32,
+    attenuation: f32,
+    n_dot_l: f32,
+}
+
+fn light_sample(light: GpuLight, s: Surface) -> LightSample {
+    if light.kind == LIGHT_DIRECTIONAL {
+        return LightSample(-light.position, MISS, 1.0, dot(s.shading, -light.position));
     }
+    let to_light = light.position - s.point;
+    let distance = length(to_light);
+    let l = to_light / distance;
+    return LightSample(l, distance, light_attenuation(light, distance), dot(s.shading, l));
+}
+
+// The first light from index `first` on that lights `s` (index light_count
+// when none does), and how `s` sees it. A surface facing away from a light
+// gets nothing from it and casts no shadow ray towards it.
+struct LitLight {
+    index: u32,
+    sample: LightSample,
+}
+
+fn next_lit_light(s: Surface, first: u32) -> LitLight {
+    var i = first;
+    while i < uniforms.light_count {
+        let sample = light_sample(lights[i], s);
+        if sample.n_dot_l > 0.0 && dot(s.geometric, sample.l) > 0.0 {
+            return LitLight(i, sample);
+        }
+        i++;
+    }
+    return LitLight(i, LightSample(vec3<f32>(0.0), MISS, 0.0, 0.0));
+}
+
+// k_a·I_a·O_d, handed to the kernel's `note_ambient`.
+fn ambient_term(m: GpuMaterial) -> vec3<f32> {
+    let color = m.ka * uniforms.ambient * m.color;
+    note_ambient(color);
     return color;
+}
+
+// A lit light's diffuse and specular terms at `s` seen from `v` (pointing
+// from the surface towards the viewer), through `shadow`, what its shadow ray
+// let through; handed to the kernel's `note_light`.
+fn light_term(lit: LitLight, s: Surface, m: GpuMaterial, v: vec3<f32>, shadow: Hit) -> vec3<f32> {
+    let i = lit.index;
+    let sample = lit.sample;
+    let light = lights[i];
+    if all(shadow.transmittance == vec3<f32>(0.0)) {
+        note_light(i, s.point, sample.l, sample.distance, sample.n_dot_l, shadow, vec3<f32>(0.0), vec3<f32>(0.0));
+        return vec3<f32>(0.0);
+    }
+    let reach = sample.attenuation * shadow.transmittance * light.radiance;
+    let diffuse = reach * m.kd * m.color * sample.n_dot_l;
+    // Without highlights in the scene (HAS_HIGHLIGHTS false) the term is 0.
+    var specular = vec3<f32>(0.0);
+    if HAS_HIGHLIGHTS {
+        specular = reach * specular_term(m, s.shading, sample.l, v);
+    }
+    note_light(i, s.point, sample.l, sample.distance, sample.n_dot_l, shadow, diffuse, specular);
+    return diffuse + specular;
 }
 
 // s_o at distance d: linear from near_scale at `near` to far_scale at `far`.

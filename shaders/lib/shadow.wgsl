@@ -1,18 +1,32 @@
-// Hard shadows: how much of a light reaches `point` (the hit's transmittance;
-// its prim is the opaque occluder that stopped the ray, when t != MISS).
-// Occluders beyond the light do not count; the ray leaves along the geometric
-// normal so smooth-shaded surfaces do not shadow themselves at the terminator.
-// import: bindings bvh dispatch primitive types
+// Hard shadows: the ray from a surface point towards a light that decides S,
+// the light let through (the traversal's any-hit query; its prim is the opaque
+// occluder that stopped the ray, when t != MISS). Occluders beyond the light
+// do not count; the ray leaves along the geometric normal so smooth-shaded
+// surfaces do not shadow themselves at the terminator.
+// import: bindings bvh primitive types
 
-fn light_visibility(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>, distance: f32) -> Hit {
-    if (uniforms.flags & FLAG_SHADOWS) == 0u {
-        return Hit(MISS, 0u, vec3<f32>(1.0), 0u);
-    }
-    count_ray(STAT_SHADOW);
+struct ShadowRay {
+    ray: Ray,
+    t_max: f32,
+}
+
+fn shadow_ray(point: vec3<f32>, geometric: vec3<f32>, to_light: vec3<f32>, distance: f32) -> ShadowRay {
     let eps = ray_epsilon(point);
-    let ray = Ray(point + geometric * eps, to_light);
-    // Only transmitters tint: a scene without them (HAS_SECONDARY_RAYS false)
-    // compiles the opaque test alone.
-    let tinted = HAS_SECONDARY_RAYS && (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
-    return traverse(ray, 0.0, distance - eps, true, tinted);
+    return ShadowRay(Ray(point + geometric * eps, to_light), distance - eps);
+}
+
+fn shadows_traced() -> bool {
+    return (uniforms.flags & FLAG_SHADOWS) != 0u;
+}
+
+// Whether transmissive occluders tint the light instead of stopping it. Only
+// transmitters tint: a scene without them (HAS_SECONDARY_RAYS false) compiles
+// the opaque test alone.
+fn shadows_tinted() -> bool {
+    return HAS_SECONDARY_RAYS && (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
+}
+
+// S for a light whose shadow ray is not traced (shadows off): all of it.
+fn unshadowed() -> Hit {
+    return Hit(MISS, 0u, vec3<f32>(1.0), 0u);
 }
