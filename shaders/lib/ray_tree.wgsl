@@ -154,17 +154,28 @@ fn push_secondary_rays(
     }
     let eps = ray_epsilon(s.point);
     let w_reflect = weight * k_reflect;
+    let w_refract = weight * k_refract;
+    // Bit 0: the reflected ray, bit 1: the refracted one.
+    var spawned = 0u;
     if any(w_reflect > vec3<f32>(uniforms.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
         count_ray(STAT_REFLECT);
-        let r = Ray(s.point + s.geometric * eps, reflect_dir(ray.dir, s.shading));
-        (*stack)[*top] = PendingRay(r, w_reflect, pending.depth + 1u, RAY_REFLECT, id);
-        *top += 1u;
+        spawned |= 1u;
     }
-    let w_refract = weight * k_refract;
     if any(w_refract > vec3<f32>(uniforms.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
         count_ray(STAT_REFRACT);
-        let r = Ray(s.point - s.geometric * eps, refracted.xyz);
-        (*stack)[*top] = PendingRay(r, w_refract, pending.depth + 1u, RAY_REFRACT, id);
+        spawned |= 2u;
+    }
+    // One push for both, in a loop whose count the driver's compiler does not
+    // know, so it keeps one copy of the store into the stack: a store at an
+    // index that differs between SIMD lanes is much code.
+    while spawned != 0u {
+        let refracted_ray = firstTrailingBit(spawned) == 1u;
+        spawned &= spawned - 1u;
+        let r = Ray(
+            s.point + select(eps, -eps, refracted_ray) * s.geometric,
+            select(reflect_dir(ray.dir, s.shading), refracted.xyz, refracted_ray),
+        );
+        (*stack)[*top] = PendingRay(r, select(w_reflect, w_refract, refracted_ray), pending.depth + 1u, select(RAY_REFLECT, RAY_REFRACT, refracted_ray), id);
         *top += 1u;
     }
 }
