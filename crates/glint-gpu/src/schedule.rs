@@ -9,6 +9,11 @@ use std::time::Duration;
 pub const BATCH_TARGET: Duration = Duration::from_millis(150);
 /// The target of an interactive render: the UI must stay responsive.
 pub const INTERACTIVE_TARGET: Duration = Duration::from_millis(30);
+/// The target of the viewer's first image of a scene or size, before which
+/// there is nothing to interact with: longer bands, fewer frames. Each frame
+/// costs a repaint of the window, which on a software rasteriser takes as long
+/// as a short band, and the rasteriser shares the CPU with the ray tracer.
+pub const FIRST_IMAGE_TARGET: Duration = BATCH_TARGET;
 
 /// Rows are traced in whole workgroups of this many.
 const TILE_ROWS: u32 = 8;
@@ -22,11 +27,27 @@ pub struct BandScheduler {
     target: Duration,
     /// Pixels per band, so a size learnt at one image width carries to another.
     pixels: u32,
+    /// The next band recorded also waited for its kernel's compile (lavapipe
+    /// compiles a kernel at its first dispatch), so it says nothing of a band.
+    compiling: bool,
 }
 
 impl BandScheduler {
     pub const fn new(target: Duration) -> Self {
-        Self { target, pixels: FIRST_BAND_PIXELS }
+        Self { target, pixels: FIRST_BAND_PIXELS, compiling: false }
+    }
+
+    /// The bands of the viewer's first image on a new canvas: aimed at
+    /// FIRST_IMAGE_TARGET, the first band, which the kernel's compile delays,
+    /// not learnt from, and so starting larger.
+    pub const fn first_image() -> Self {
+        Self { target: FIRST_IMAGE_TARGET, pixels: 8 * FIRST_BAND_PIXELS, compiling: true }
+    }
+
+    /// Aims the bands from now on at `target`, starting from what was learnt.
+    pub fn retarget(&mut self, target: Duration) {
+        self.pixels = (f64::from(self.pixels) * target.as_secs_f64() / self.target.as_secs_f64()) as u32;
+        self.target = target;
     }
 
     /// The rows of the next band of an image `width` wide with `left` rows to
@@ -39,6 +60,9 @@ impl BandScheduler {
     /// Learns from a band of `rows` rows of an image `width` wide that kept
     /// the device busy for `took`.
     pub fn record(&mut self, width: u32, rows: u32, took: Duration) {
+        if std::mem::take(&mut self.compiling) {
+            return;
+        }
         let pixels = f64::from(rows) * f64::from(width);
         let ideal = pixels * self.target.as_secs_f64() / took.as_secs_f64().max(1e-6);
         let next = ideal.min(f64::from(self.pixels) * 2.0).min(f64::from(u32::MAX));
@@ -69,6 +93,22 @@ mod tests {
         assert!((288..=304).contains(&rows), "150 ms at 0.5 ms a row is 300 rows, got {rows}");
         let rows = settle(Duration::from_micros(500), INTERACTIVE_TARGET);
         assert!((56..=64).contains(&rows), "30 ms is 60 rows, got {rows}");
+    }
+
+    #[test]
+    fn the_first_image_starts_larger_aims_longer_and_is_retargeted_at_once() {
+        let mut s = BandScheduler::first_image();
+        let first = s.rows(WIDTH, 10_000);
+        assert_eq!(first, 8 * FIRST_BAND_PIXELS / WIDTH);
+        s.record(WIDTH, first, Duration::from_secs(1));
+        assert_eq!(s.rows(WIDTH, 10_000), first, "the band that waited for the compile is not learnt from");
+        for _ in 0..20 {
+            let rows = s.rows(WIDTH, 100_000);
+            s.record(WIDTH, rows, Duration::from_micros(500) * rows);
+        }
+        assert!((288..=304).contains(&s.rows(WIDTH, 100_000)), "150 ms at 0.5 ms a row");
+        s.retarget(INTERACTIVE_TARGET);
+        assert!((56..=64).contains(&s.rows(WIDTH, 100_000)), "30 ms at 0.5 ms a row, from the next band on");
     }
 
     #[test]

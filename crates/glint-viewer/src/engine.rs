@@ -106,6 +106,9 @@ pub struct Accumulation {
     /// Rows of the current sample not yet traced; `None` for all of them.
     rows_left: Option<u32>,
     bands: BandScheduler,
+    /// A whole sample has been traced on this canvas: bands are aimed at
+    /// INTERACTIVE_TARGET from then on, at the first image's target before.
+    first_image_traced: bool,
     in_flight: Arc<AtomicUsize>,
     timing: Arc<Mutex<BandTiming>>,
     /// The texture shows an image of the current canvas.
@@ -121,7 +124,8 @@ impl Default for Accumulation {
             samples: 0,
             next_row: 0,
             rows_left: None,
-            bands: BandScheduler::new(INTERACTIVE_TARGET),
+            bands: BandScheduler::first_image(),
+            first_image_traced: false,
             in_flight: Arc::new(AtomicUsize::new(0)),
             timing: Arc::new(Mutex::new(BandTiming::default())),
             presented: false,
@@ -195,6 +199,9 @@ impl Accumulation {
         let left = left - (rows.end - rows.start);
         self.rows_left = Some(left);
         if left == 0 {
+            if !std::mem::replace(&mut self.first_image_traced, true) {
+                self.bands.retarget(INTERACTIVE_TARGET);
+            }
             self.samples += 1;
             self.rows_left = None;
         }
