@@ -46,10 +46,11 @@ fn triangle_geometric_normal(p: GpuPrim) -> vec3<f32> {
 }
 
 // The interpolated vertex normal at `point` for a smooth triangle, else the
-// geometric normal.
+// geometric normal. A kernel for a scene without smooth triangles
+// (HAS_SMOOTH_TRIANGLES false) compiles without the interpolation.
 fn triangle_shading_normal(p: GpuPrim, point: vec3<f32>) -> vec3<f32> {
     let n = cross(p.b.xyz - p.a.xyz, p.c.xyz - p.a.xyz);
-    if p.count != 3u {
+    if !HAS_SMOOTH_TRIANGLES || p.count != 3u {
         return normalize(n);
     }
     // Barycentric weights from sub-triangle areas.

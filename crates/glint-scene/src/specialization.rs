@@ -1,7 +1,8 @@
 //! What a kernel is compiled for. A software rasteriser compiles each kernel
 //! to CPU code when it is first used, and the time it takes grows with the code
 //! it is given: a kernel specialised to a scene carries no intersection code for
-//! primitive kinds the scene does not hold, and no reflected or refracted rays
+//! primitive kinds the scene does not hold, no interpolated normals when no
+//! triangle has vertex normals, and no reflected or refracted rays
 //! when no material makes any, no highlight, checkerboard or light falloff
 //! when the scene has none, and, for a command that renders one view, no code
 //! of the others (each becomes a `const` in the kernel's prelude, whose dead
@@ -21,6 +22,8 @@ pub struct Specialization {
     pub polygons: bool,
     pub cones: bool,
     pub planes: bool,
+    /// Some triangle interpolates vertex normals (NFF `pp`, OBJ `vn`).
+    pub smooth_triangles: bool,
     /// Some material reflects or transmits, so rays may spawn reflected and
     /// refracted rays.
     pub secondary_rays: bool,
@@ -52,6 +55,7 @@ impl Specialization {
         polygons: true,
         cones: true,
         planes: true,
+        smooth_triangles: true,
         secondary_rays: true,
         highlights: true,
         checker: true,
@@ -74,6 +78,7 @@ impl Specialization {
             polygons: false,
             cones: false,
             planes: false,
+            smooth_triangles: false,
             secondary_rays: materials().any(spawns_secondary_rays),
             highlights: materials().any(has_highlight),
             checker: materials().any(is_checkered),
@@ -84,7 +89,10 @@ impl Specialization {
         for p in &scene.prims {
             match p.kind() {
                 PRIM_SPHERE => needs.spheres = true,
-                PRIM_TRIANGLE => needs.triangles = true,
+                PRIM_TRIANGLE => {
+                    needs.triangles = true;
+                    needs.smooth_triangles |= p.count == 3;
+                }
                 PRIM_POLYGON => needs.polygons = true,
                 PRIM_CONE => needs.cones = true,
                 PRIM_PLANE => needs.planes = true,
@@ -133,13 +141,14 @@ impl Specialization {
         self.attenuation || !lights.iter().any(fades)
     }
 
-    fn flags(self) -> [(&'static str, bool); 9] {
+    fn flags(self) -> [(&'static str, bool); 10] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
             ("HAS_POLYGONS", self.polygons),
             ("HAS_CONES", self.cones),
             ("HAS_PLANES", self.planes),
+            ("HAS_SMOOTH_TRIANGLES", self.smooth_triangles),
             ("HAS_SECONDARY_RAYS", self.secondary_rays),
             ("HAS_HIGHLIGHTS", self.highlights),
             ("HAS_CHECKER", self.checker),
@@ -226,6 +235,7 @@ mod tests {
             polygons: false,
             cones: true,
             planes: false,
+            smooth_triangles: false,
             secondary_rays: true,
             highlights: false,
             checker: false,
@@ -236,9 +246,20 @@ mod tests {
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones");
         let mut every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
+        every.prims[2].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
         assert_eq!(Specialization::of(&every), Specialization::ALL);
+    }
+
+    #[test]
+    fn interpolated_normals_are_compiled_for_triangles_with_vertex_normals() {
+        let mut mesh = scene(&[PRIM_TRIANGLE, PRIM_TRIANGLE], 0.0);
+        assert!(!Specialization::of(&mesh).smooth_triangles);
+        mesh.prims[1].count = 3;
+        assert!(Specialization::of(&mesh).smooth_triangles);
+        let polygon = GpuPrim { kind_material: PRIM_POLYGON, count: 3, ..GpuPrim::zeroed() };
+        assert!(!Specialization::of(&GpuScene { prims: vec![polygon], ..scene(&[], 0.0) }).smooth_triangles);
     }
 
     #[test]
@@ -277,7 +298,7 @@ mod tests {
     fn every_flag_is_a_wgsl_constant() {
         let wgsl = Specialization::of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
-        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SECONDARY_RAYS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION"] {
+        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION"] {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
     }
