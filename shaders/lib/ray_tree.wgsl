@@ -8,8 +8,8 @@
 // Every ray of the tree and every shadow ray goes through one call of
 // `traverse`: a loop whose step is one query, the next ray of the tree or the
 // shadow ray towards the next light of the surface being shaded. The driver
-// inlines a call's whole walk and primitive tests, so one call site compiles
-// to about two thirds of the code of two (a cold start pays for every copy).
+// inlines a call's whole walk and primitive tests, so a second call would be
+// a second copy of them to compile (a cold start pays for every copy).
 // import: bindings bvh checker dispatch primitive reflect refract shade shadow types
 
 struct PendingRay {
@@ -38,15 +38,17 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
     var id: u32;
     var local: vec3<f32>;
     var light: LitLight;
-    // The query traced next: `pending`'s closest hit, or a shadow ray's any hit.
+    // The query traced next: `pending`'s closest hit, or a shadow ray's any
+    // hit before the light, along `query_ray` up to `query_end`.
     var shadow_query = false;
-    var query = ShadowRay(eye, MISS);
+    var query_ray = eye;
+    var query_end = MISS;
     loop {
         var hit: Hit;
         if shadow_query && !shadows_traced() {
             hit = unshadowed();
         } else {
-            hit = traverse(query.ray, 0.0, query.t_max, shadow_query, shadow_query && shadows_tinted());
+            hit = traverse(query_ray, 0.0, query_end, shadow_query, shadow_query && shadows_tinted());
         }
         var shading = true;
         var first_light = 0u;
@@ -78,7 +80,9 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             if shadows_traced() {
                 count_ray(STAT_SHADOW);
             }
-            query = shadow_ray(s.point, s.geometric, light.sample.l, light.sample.distance);
+            let shadow = shadow_ray(s.point, s.geometric, light.sample.l, light.sample.distance);
+            query_ray = shadow.ray;
+            query_end = shadow.t_max;
             shadow_query = true;
             continue;
         }
@@ -92,7 +96,8 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         }
         top--;
         pending = stack[top];
-        query = ShadowRay(pending.ray, MISS);
+        query_ray = pending.ray;
+        query_end = MISS;
         shadow_query = false;
     }
     return color;
