@@ -44,7 +44,8 @@ impl BandScheduler {
         Self { target: FIRST_IMAGE_TARGET, pixels: 8 * FIRST_BAND_PIXELS, compiling: true }
     }
 
-    /// Aims the bands from now on at `target`, starting from what was learnt.
+    /// Aims the bands from now on at `target`, starting from what was learnt;
+    /// at the target they already have, it changes nothing.
     pub fn retarget(&mut self, target: Duration) {
         self.pixels = (f64::from(self.pixels) * target.as_secs_f64() / self.target.as_secs_f64()) as u32;
         self.target = target;

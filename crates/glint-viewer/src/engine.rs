@@ -106,9 +106,6 @@ pub struct Accumulation {
     /// Rows of the current sample not yet traced; `None` for all of them.
     rows_left: Option<u32>,
     bands: BandScheduler,
-    /// A whole sample has been traced on this canvas: bands are aimed at
-    /// INTERACTIVE_TARGET from then on, at the first image's target before.
-    first_image_traced: bool,
     in_flight: Arc<AtomicUsize>,
     timing: Arc<Mutex<BandTiming>>,
     /// The texture shows an image of the current canvas.
@@ -125,7 +122,6 @@ impl Default for Accumulation {
             next_row: 0,
             rows_left: None,
             bands: BandScheduler::first_image(),
-            first_image_traced: false,
             in_flight: Arc::new(AtomicUsize::new(0)),
             timing: Arc::new(Mutex::new(BandTiming::default())),
             presented: false,
@@ -199,9 +195,9 @@ impl Accumulation {
         let left = left - (rows.end - rows.start);
         self.rows_left = Some(left);
         if left == 0 {
-            if !std::mem::replace(&mut self.first_image_traced, true) {
-                self.bands.retarget(INTERACTIVE_TARGET);
-            }
+            // A whole sample is in: the bands make way for the UI from now on
+            // (at the interactive target already, this changes nothing).
+            self.bands.retarget(INTERACTIVE_TARGET);
             self.samples += 1;
             self.rows_left = None;
         }
