@@ -69,7 +69,7 @@ fn a_kernel_without_the_terms_a_scene_lacks_renders_what_the_kernel_with_them_re
     let r = renderer();
     let mut prepared = r.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap();
     let own = prepared.buffers.specialization;
-    assert!(!own.highlights && !own.checker && !own.attenuation && own.secondary_rays, "{own:?}");
+    assert!(!own.highlights && !own.checker && !own.attenuation && own.secondary_rays && !own.refractions, "{own:?}");
     let options = RenderOptions { spp: 3, seed: 2, ..RenderOptions::default() };
     let mut render = |specialization| {
         prepared.buffers.specialization = specialization;

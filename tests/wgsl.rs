@@ -46,8 +46,9 @@ fn every_specialisation_validates() {
             Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }
         });
         let plain = Specialization { smooth_triangles: false, highlights: false, checker: false, attenuation: false, ..Specialization::ALL };
+        let mirrors = Specialization { refractions: false, ..Specialization::ALL };
         let single_rays = views.map(|s| Specialization { packets: false, ..s });
-        for specialization in kinds.chain(views).chain(single_rays).chain([plain]) {
+        for specialization in kinds.chain(views).chain(single_rays).chain([plain, mirrors]) {
             if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization).unwrap().validate() {
                 panic!("{kernel:?} for {specialization}: {e}");
             }

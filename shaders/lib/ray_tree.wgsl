@@ -135,7 +135,9 @@ fn push_secondary_rays(
     // Entering when the ray meets the front of the surface; the outside is air.
     let eta = select(1.0 / m.ior, m.ior, s.backface);
     var k_reflect = m.reflect;
-    var k_refract = select(vec3<f32>(0.0), m.transmit, (uniforms.flags & FLAG_REFRACTIONS) != 0u);
+    // Without transmitters (HAS_REFRACTIONS false) nothing below refracts,
+    // and the driver's compiler drops the refraction with the constant.
+    var k_refract = select(vec3<f32>(0.0), m.transmit, HAS_REFRACTIONS && (uniforms.flags & FLAG_REFRACTIONS) != 0u);
     let refracted = refract_dir(ray.dir, s.shading, eta);
     note_refraction(eta, any(k_refract > vec3<f32>(0.0)) && refracted.w == 0.0);
     if any(k_refract > vec3<f32>(0.0)) {

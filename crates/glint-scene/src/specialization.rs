@@ -27,6 +27,8 @@ pub struct Specialization {
     /// Some material reflects or transmits, so rays may spawn reflected and
     /// refracted rays.
     pub secondary_rays: bool,
+    /// Some material transmits, so rays may refract and shadows be tinted.
+    pub refractions: bool,
     /// Some material has a highlight (k_s > 0, or a metallic F0).
     pub highlights: bool,
     /// Some material is checkered.
@@ -57,6 +59,7 @@ impl Specialization {
         planes: true,
         smooth_triangles: true,
         secondary_rays: true,
+        refractions: true,
         highlights: true,
         checker: true,
         attenuation: true,
@@ -80,6 +83,7 @@ impl Specialization {
             planes: false,
             smooth_triangles: false,
             secondary_rays: materials().any(spawns_secondary_rays),
+            refractions: materials().any(transmits),
             highlights: materials().any(has_highlight),
             checker: materials().any(is_checkered),
             attenuation: scene.lights.iter().any(fades),
@@ -106,7 +110,7 @@ impl Specialization {
     /// the scene's are: for a scene whose materials and lights change in place
     /// (the viewer's).
     pub fn editable(self) -> Specialization {
-        Specialization { secondary_rays: true, highlights: true, checker: true, attenuation: true, ..self }
+        Specialization { secondary_rays: true, refractions: true, highlights: true, checker: true, attenuation: true, ..self }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -133,7 +137,10 @@ impl Specialization {
     /// Every material counts, used or not (it cannot tell): stricter than `of`.
     pub fn covers(self, materials: &[GpuMaterial]) -> bool {
         let needs = |on: bool, term: fn(&GpuMaterial) -> bool| on || !materials.iter().any(term);
-        needs(self.secondary_rays, spawns_secondary_rays) && needs(self.highlights, has_highlight) && needs(self.checker, is_checkered)
+        needs(self.secondary_rays, spawns_secondary_rays)
+            && needs(self.refractions, transmits)
+            && needs(self.highlights, has_highlight)
+            && needs(self.checker, is_checkered)
     }
 
     /// Whether a kernel of this specialisation renders `lights` rightly.
@@ -141,7 +148,7 @@ impl Specialization {
         self.attenuation || !lights.iter().any(fades)
     }
 
-    fn flags(self) -> [(&'static str, bool); 10] {
+    fn flags(self) -> [(&'static str, bool); 11] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
@@ -150,6 +157,7 @@ impl Specialization {
             ("HAS_PLANES", self.planes),
             ("HAS_SMOOTH_TRIANGLES", self.smooth_triangles),
             ("HAS_SECONDARY_RAYS", self.secondary_rays),
+            ("HAS_REFRACTIONS", self.refractions),
             ("HAS_HIGHLIGHTS", self.highlights),
             ("HAS_CHECKER", self.checker),
             ("HAS_ATTENUATION", self.attenuation),
@@ -166,7 +174,11 @@ impl Specialization {
 }
 
 fn spawns_secondary_rays(m: &GpuMaterial) -> bool {
-    m.reflect.iter().chain(&m.transmit).any(|&k| k > 0.0)
+    m.reflect.iter().any(|&k| k > 0.0) || transmits(m)
+}
+
+fn transmits(m: &GpuMaterial) -> bool {
+    m.transmit.iter().any(|&k| k > 0.0)
 }
 
 // The specular term k_s·O_s·lobe is exactly 0 with k_s = 0 (the lobe is at
@@ -196,6 +208,8 @@ impl std::fmt::Display for Specialization {
         f.write_str(if kinds.is_empty() { "no primitives".to_string() } else { kinds.join("+") }.as_str())?;
         if !self.secondary_rays {
             f.write_str(", eye rays only")?;
+        } else if !self.refractions {
+            f.write_str(", no refraction")?;
         }
         if let Some(view) = self.view {
             write!(f, ", {} view only", format!("{view:?}").to_lowercase())?;
@@ -237,6 +251,7 @@ mod tests {
             planes: false,
             smooth_triangles: false,
             secondary_rays: true,
+            refractions: false,
             highlights: false,
             checker: false,
             attenuation: false,
@@ -244,10 +259,10 @@ mod tests {
             packets: true,
         };
         assert_eq!(needs, want);
-        assert_eq!(needs.to_string(), "triangles+cones");
+        assert_eq!(needs.to_string(), "triangles+cones, no refraction");
         let mut every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
         every.prims[2].count = 3;
-        every.materials[0] = GpuMaterial { reflect: [1.0; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
+        every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
         assert_eq!(Specialization::of(&every), Specialization::ALL);
     }
@@ -270,6 +285,18 @@ mod tests {
         let glass = [GpuMaterial { transmit: [0.0, 0.0, 0.9], ..GpuMaterial::zeroed() }];
         assert!(!matte.covers(&glass) && matte.covers(&[GpuMaterial::zeroed()]));
         assert!(matte.editable().covers(&glass));
+    }
+
+    #[test]
+    fn mirrors_alone_compile_no_refraction() {
+        let mirror = Specialization::of(&scene(&[PRIM_SPHERE], 0.5));
+        assert!(mirror.secondary_rays && !mirror.refractions);
+        let glass = GpuMaterial { transmit: [0.0, 0.0, 0.9], ..GpuMaterial::zeroed() };
+        assert!(mirror.covers(&[GpuMaterial { reflect: [1.0; 3], ..GpuMaterial::zeroed() }]) && !mirror.covers(&[glass]));
+        let mut transparent = scene(&[PRIM_SPHERE], 0.0);
+        transparent.materials = vec![glass];
+        let needs = Specialization::of(&transparent);
+        assert!(needs.secondary_rays && needs.refractions, "{needs:?}");
     }
 
     #[test]
@@ -298,7 +325,7 @@ mod tests {
     fn every_flag_is_a_wgsl_constant() {
         let wgsl = Specialization::of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
-        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION"] {
+        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_REFRACTIONS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION"] {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
     }
