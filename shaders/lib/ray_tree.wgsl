@@ -95,12 +95,21 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             break;
         }
         top--;
-        pending = stack[top];
+        pending = stack[stack_slot(top)];
         query_ray = pending.ray;
         query_end = MISS;
         shadow_query = false;
     }
     return color;
+}
+
+// Where the ray stack's entry `top` is kept. Without transmitters
+// (HAS_REFRACTIONS false) a surface spawns its reflected ray alone, so the
+// tree is a chain and the stack never holds more than one pending ray: at the
+// constant slot 0 the driver keeps it in registers instead of compiling a
+// store and a load at an index that differs between SIMD lanes.
+fn stack_slot(top: u32) -> u32 {
+    return select(0u, top, HAS_REFRACTIONS);
 }
 
 // Adds the shaded surface's local colour `local` (depth-cued) to `color` and
@@ -182,7 +191,7 @@ fn push_secondary_rays(
             s.point + select(eps, -eps, refracted_ray) * s.geometric,
             select(reflect_dir(ray.dir, s.shading), refracted.xyz, refracted_ray),
         );
-        (*stack)[*top] = PendingRay(r, select(w_reflect, w_refract, refracted_ray), pending.depth + 1u, select(RAY_REFLECT, RAY_REFRACT, refracted_ray), id);
+        (*stack)[stack_slot(*top)] = PendingRay(r, select(w_reflect, w_refract, refracted_ray), pending.depth + 1u, select(RAY_REFLECT, RAY_REFRACT, refracted_ray), id);
         *top += 1u;
     }
 }
