@@ -127,7 +127,7 @@ fn push_secondary_rays(
 ) {
     let ray = pending.ray;
     var weight = pending.weight;
-    if (uniforms.flags & FLAG_DEPTH_CUE) != 0u {
+    if HAS_DEPTH_CUE && (uniforms.flags & FLAG_DEPTH_CUE) != 0u {
         let so = depth_cue_scale(t_hit);
         note_cue(so);
         *color += weight * (so * local + (1.0 - so) * uniforms.depth_cue_color);

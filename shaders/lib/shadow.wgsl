@@ -20,10 +20,10 @@ fn shadows_traced() -> bool {
 }
 
 // Whether transmissive occluders tint the light instead of stopping it. Only
-// transmitters tint: a scene without them (HAS_REFRACTIONS false) compiles
-// the opaque test alone.
+// transmitters tint: a scene without them (HAS_REFRACTIONS false) or whose
+// shadows are opaque (HAS_TINTED_SHADOWS false) compiles the opaque test alone.
 fn shadows_tinted() -> bool {
-    return HAS_REFRACTIONS && (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
+    return HAS_REFRACTIONS && HAS_TINTED_SHADOWS && (uniforms.flags & FLAG_TINTED_SHADOWS) != 0u;
 }
 
 // S for a light whose shadow ray is not traced (shadows off): all of it.

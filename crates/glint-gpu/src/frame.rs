@@ -93,7 +93,7 @@ impl Renderer {
             self.write_lights(buffers, &lights)?;
         }
         let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.bvh_root());
-        self.write_uniforms(buffers, &uniforms);
+        self.write_uniforms(buffers, &uniforms)?;
         prepared.depth_extent = depth_extent(&gpu_types::primitive_bounds(scene), scene.camera.eye);
         Ok(())
     }

@@ -178,10 +178,18 @@ impl Renderer {
 
     /// Replaces the scene uniforms (camera, background, ambient, flags, depth
     /// cue, maximum depth, light count) for the dispatches that follow; they
-    /// must be for the buffers' image size and BVH root.
-    pub fn write_uniforms(&self, scene: &SceneBuffers, uniforms: &SceneUniforms) {
+    /// must be for the buffers' image size and BVH root, and a scene uploaded
+    /// for its own settings (opaque shadows, no depth cue) takes no others.
+    pub fn write_uniforms(&self, scene: &SceneBuffers, uniforms: &SceneUniforms) -> Result<(), GpuError> {
         debug_assert_eq!((uniforms.width, uniforms.height, uniforms.bvh_root), (scene.width, scene.height, scene.bvh_root));
+        if !scene.specialization.covers_uniforms(uniforms) {
+            return Err(GpuError::Runtime(format!(
+                "the scene was uploaded for its own settings ({}): tinted shadows or depth cueing need it uploaded editable",
+                scene.specialization
+            )));
+        }
         self.queue.write_buffer(&scene.uniforms, 0, bytemuck::bytes_of(uniforms));
+        Ok(())
     }
 
     /// Writes `materials` (packed in scene order) over the scene's materials;

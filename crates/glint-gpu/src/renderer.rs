@@ -284,7 +284,7 @@ impl Renderer {
             materials,
             lights,
             scene_bytes,
-            specialization: Specialization::of(scene),
+            specialization: Specialization::of(scene, &uniforms),
         })
     }
 

@@ -2,15 +2,16 @@
 //! to CPU code when it is first used, and the time it takes grows with the code
 //! it is given: a kernel specialised to a scene carries no intersection code for
 //! primitive kinds the scene does not hold, no interpolated normals when no
-//! triangle has vertex normals, and no reflected or refracted rays
-//! when no material makes any, no highlight, checkerboard or light falloff
-//! when the scene has none, and, for a command that renders one view, no code
+//! triangle has vertex normals, no reflected or refracted rays when no
+//! material makes any, no refraction when none transmits, no highlight,
+//! checkerboard, light falloff, tinted shadow or depth cue when the scene has
+//! none, and, for a command that renders one view, no code
 //! of the others (each becomes a `const` in the kernel's prelude, whose dead
 //! branches the driver's compiler removes before it generates code).
 
 use crate::gpu_types::{
-    GpuLight, GpuMaterial, GpuScene, View, ANY_VIEW, ATTENUATION_NONE, MATERIAL_CHECKER, MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE,
-    PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
+    GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
+    MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
 };
 
 /// The primitive kinds a kernel can intersect, whether its ray tree goes past
@@ -35,6 +36,10 @@ pub struct Specialization {
     pub checker: bool,
     /// Some light fades with distance.
     pub attenuation: bool,
+    /// Shadows are tinted by the transmitters they pass (`shadows = "tinted"`).
+    pub tinted_shadows: bool,
+    /// The scene has depth cueing.
+    pub depth_cue: bool,
     /// The one view every dispatch renders, or `None`: each dispatch says
     /// (the viewer's kernels, a render that writes AOVs besides its image).
     pub view: Option<View>,
@@ -63,13 +68,16 @@ impl Specialization {
         highlights: true,
         checker: true,
         attenuation: true,
+        tinted_shadows: true,
+        depth_cue: true,
         view: None,
         packets: true,
     };
 
     /// What `scene` needs: its primitives' kinds, the terms of the materials
-    /// they use (a loader's default material may be unused) and its lights'.
-    pub fn of(scene: &GpuScene) -> Specialization {
+    /// they use (a loader's default material may be unused), its lights' and
+    /// those its render settings turn on (`uniforms`).
+    pub fn of(scene: &GpuScene, uniforms: &SceneUniforms) -> Specialization {
         let mut used = vec![false; scene.materials.len()];
         for p in &scene.prims {
             used[p.material()] = true;
@@ -87,6 +95,8 @@ impl Specialization {
             highlights: materials().any(has_highlight),
             checker: materials().any(is_checkered),
             attenuation: scene.lights.iter().any(fades),
+            tinted_shadows: uniforms.flags & FLAG_TINTED_SHADOWS != 0,
+            depth_cue: uniforms.flags & FLAG_DEPTH_CUE != 0,
             view: None,
             packets: true,
         };
@@ -106,11 +116,20 @@ impl Specialization {
         needs
     }
 
-    /// The same kinds, with every term materials and lights can make, whatever
-    /// the scene's are: for a scene whose materials and lights change in place
-    /// (the viewer's).
+    /// The same kinds, with every term materials, lights and render settings
+    /// can make, whatever the scene's are: for a scene whose materials, lights
+    /// and settings change in place (the viewer's).
     pub fn editable(self) -> Specialization {
-        Specialization { secondary_rays: true, refractions: true, highlights: true, checker: true, attenuation: true, ..self }
+        Specialization {
+            secondary_rays: true,
+            refractions: true,
+            highlights: true,
+            checker: true,
+            attenuation: true,
+            tinted_shadows: true,
+            depth_cue: true,
+            ..self
+        }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -148,7 +167,13 @@ impl Specialization {
         self.attenuation || !lights.iter().any(fades)
     }
 
-    fn flags(self) -> [(&'static str, bool); 11] {
+    /// Whether a kernel of this specialisation renders with `uniforms`' settings.
+    pub fn covers_uniforms(self, uniforms: &SceneUniforms) -> bool {
+        let needs = |on: bool, flag: u32| on || uniforms.flags & flag == 0;
+        needs(self.tinted_shadows, FLAG_TINTED_SHADOWS) && needs(self.depth_cue, FLAG_DEPTH_CUE)
+    }
+
+    fn flags(self) -> [(&'static str, bool); 13] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
@@ -161,6 +186,8 @@ impl Specialization {
             ("HAS_HIGHLIGHTS", self.highlights),
             ("HAS_CHECKER", self.checker),
             ("HAS_ATTENUATION", self.attenuation),
+            ("HAS_TINTED_SHADOWS", self.tinted_shadows),
+            ("HAS_DEPTH_CUE", self.depth_cue),
         ]
     }
 
@@ -227,6 +254,10 @@ mod tests {
     use crate::gpu_types::GpuPrim;
     use bytemuck::Zeroable;
 
+    fn of(scene: &GpuScene) -> Specialization {
+        Specialization::of(scene, &SceneUniforms::zeroed())
+    }
+
     fn scene(kinds: &[u32], reflect: f32) -> GpuScene {
         GpuScene {
             prims: kinds.iter().map(|&kind| GpuPrim { kind_material: kind, ..GpuPrim::zeroed() }).collect(),
@@ -242,7 +273,7 @@ mod tests {
 
     #[test]
     fn a_scene_specialises_to_the_kinds_it_holds() {
-        let needs = Specialization::of(&scene(&[PRIM_TRIANGLE, PRIM_CONE, PRIM_TRIANGLE], 0.5));
+        let needs = of(&scene(&[PRIM_TRIANGLE, PRIM_CONE, PRIM_TRIANGLE], 0.5));
         let want = Specialization {
             spheres: false,
             triangles: true,
@@ -255,6 +286,8 @@ mod tests {
             highlights: false,
             checker: false,
             attenuation: false,
+            tinted_shadows: false,
+            depth_cue: false,
             view: None,
             packets: true,
         };
@@ -264,22 +297,23 @@ mod tests {
         every.prims[2].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
-        assert_eq!(Specialization::of(&every), Specialization::ALL);
+        let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, ..SceneUniforms::zeroed() };
+        assert_eq!(Specialization::of(&every, &uniforms), Specialization::ALL);
     }
 
     #[test]
     fn interpolated_normals_are_compiled_for_triangles_with_vertex_normals() {
         let mut mesh = scene(&[PRIM_TRIANGLE, PRIM_TRIANGLE], 0.0);
-        assert!(!Specialization::of(&mesh).smooth_triangles);
+        assert!(!of(&mesh).smooth_triangles);
         mesh.prims[1].count = 3;
-        assert!(Specialization::of(&mesh).smooth_triangles);
+        assert!(of(&mesh).smooth_triangles);
         let polygon = GpuPrim { kind_material: PRIM_POLYGON, count: 3, ..GpuPrim::zeroed() };
-        assert!(!Specialization::of(&GpuScene { prims: vec![polygon], ..scene(&[], 0.0) }).smooth_triangles);
+        assert!(!of(&GpuScene { prims: vec![polygon], ..scene(&[], 0.0) }).smooth_triangles);
     }
 
     #[test]
     fn matte_scenes_trace_eye_rays_only_unless_their_materials_may_change() {
-        let matte = Specialization::of(&scene(&[PRIM_SPHERE], 0.0));
+        let matte = of(&scene(&[PRIM_SPHERE], 0.0));
         assert!(!matte.secondary_rays);
         assert_eq!(matte.to_string(), "spheres, eye rays only");
         let glass = [GpuMaterial { transmit: [0.0, 0.0, 0.9], ..GpuMaterial::zeroed() }];
@@ -289,19 +323,19 @@ mod tests {
 
     #[test]
     fn mirrors_alone_compile_no_refraction() {
-        let mirror = Specialization::of(&scene(&[PRIM_SPHERE], 0.5));
+        let mirror = of(&scene(&[PRIM_SPHERE], 0.5));
         assert!(mirror.secondary_rays && !mirror.refractions);
         let glass = GpuMaterial { transmit: [0.0, 0.0, 0.9], ..GpuMaterial::zeroed() };
         assert!(mirror.covers(&[GpuMaterial { reflect: [1.0; 3], ..GpuMaterial::zeroed() }]) && !mirror.covers(&[glass]));
         let mut transparent = scene(&[PRIM_SPHERE], 0.0);
         transparent.materials = vec![glass];
-        let needs = Specialization::of(&transparent);
+        let needs = of(&transparent);
         assert!(needs.secondary_rays && needs.refractions, "{needs:?}");
     }
 
     #[test]
     fn shading_terms_are_compiled_for_the_materials_and_lights_that_make_them() {
-        let plain = Specialization::of(&scene(&[PRIM_SPHERE], 0.0));
+        let plain = of(&scene(&[PRIM_SPHERE], 0.0));
         assert!(!plain.highlights && !plain.checker && !plain.attenuation);
         let shiny = GpuMaterial { ks: 0.3, ..GpuMaterial::zeroed() };
         let metal = GpuMaterial { flags: MATERIAL_METALLIC, ..GpuMaterial::zeroed() };
@@ -315,24 +349,37 @@ mod tests {
         let mut lit = scene(&[PRIM_SPHERE, PRIM_SPHERE], 0.0);
         lit.materials = vec![shiny, checkered, GpuMaterial { reflect: [0.5; 3], ..GpuMaterial::zeroed() }];
         lit.lights = vec![fading];
-        assert!(!Specialization::of(&lit).checker, "only the primitives' materials count");
+        assert!(!of(&lit).checker, "only the primitives' materials count");
         lit.prims[1].kind_material |= 1 << 8;
-        let needs = Specialization::of(&lit);
+        let needs = of(&lit);
         assert!(needs.highlights && needs.checker && needs.attenuation && !needs.secondary_rays);
     }
 
     #[test]
+    fn tinted_shadows_and_depth_cueing_are_compiled_for_the_settings_that_turn_them_on() {
+        let glass = scene(&[PRIM_SPHERE], 0.0);
+        let opaque = of(&glass);
+        assert!(!opaque.tinted_shadows && !opaque.depth_cue);
+        for flag in [FLAG_TINTED_SHADOWS, FLAG_DEPTH_CUE] {
+            let uniforms = SceneUniforms { flags: flag, ..SceneUniforms::zeroed() };
+            assert!(!opaque.covers_uniforms(&uniforms) && opaque.editable().covers_uniforms(&uniforms), "{flag}");
+            assert!(Specialization::of(&glass, &uniforms).covers_uniforms(&uniforms), "{flag}");
+        }
+        assert!(opaque.covers_uniforms(&SceneUniforms::zeroed()));
+    }
+
+    #[test]
     fn every_flag_is_a_wgsl_constant() {
-        let wgsl = Specialization::of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
+        let wgsl = of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
-        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_REFRACTIONS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION"] {
+        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_REFRACTIONS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION", "HAS_TINTED_SHADOWS", "HAS_DEPTH_CUE"] {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
     }
 
     #[test]
     fn a_command_of_one_view_specialises_to_it_and_other_dispatches_get_any_view() {
-        let kinds = Specialization::of(&scene(&[PRIM_TRIANGLE], 0.0));
+        let kinds = of(&scene(&[PRIM_TRIANGLE], 0.0));
         let depth = kinds.for_views(&[View::Depth, View::Depth]);
         assert_eq!(depth.view, Some(View::Depth));
         assert_eq!(depth.to_string(), "triangles, eye rays only, depth view only");
@@ -346,7 +393,7 @@ mod tests {
 
     #[test]
     fn a_one_off_render_traces_packets_only_when_they_repay_their_compile() {
-        let kinds = Specialization::of(&scene(&[PRIM_TRIANGLE], 0.0));
+        let kinds = of(&scene(&[PRIM_TRIANGLE], 0.0));
         assert!(kinds.packets && kinds.wgsl().contains("const PACKETS: bool = true;"));
         let small = kinds.for_eye_rays(512 * 512);
         assert!(!small.packets && small.wgsl().contains("const PACKETS: bool = false;"));

@@ -14,7 +14,7 @@ use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
-use glint_scene::gpu_types::{GpuLight, GpuMaterial};
+use glint_scene::gpu_types::{GpuLight, GpuMaterial, SceneUniforms};
 use glint_scene::Scene;
 
 /// Bands submitted but not finished; more would only queue up latency.
@@ -67,14 +67,15 @@ impl Canvas {
         Ok(Self { kernels, prepared, target, scene_generation, counter })
     }
 
-    /// Makes the kernels take `materials` and `lights` before they are written:
-    /// an edit beyond the scene's own terms (a matte scene's first mirror, a
-    /// light that fades) switches to the kernels with every term, once. Until
+    /// Makes the kernels take `materials`, `lights` and `uniforms` before they
+    /// are written: an edit beyond the scene's own terms (a matte scene's first
+    /// mirror, a light that fades, depth cueing turned on) switches to the
+    /// kernels with every term, once. Until
     /// then the kernels carry only what the scene uses, which lavapipe
     /// compiles in about two thirds of the time, so the first image comes sooner.
-    pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight]) -> Result<(), GpuError> {
+    pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight], uniforms: &SceneUniforms) -> Result<(), GpuError> {
         let specialization = &mut self.prepared.buffers.specialization;
-        if !specialization.covers(materials) || !specialization.covers_lights(lights) {
+        if !specialization.covers(materials) || !specialization.covers_lights(lights) || !specialization.covers_uniforms(uniforms) {
             *specialization = specialization.editable();
             self.kernels.renderer.create_pipelines(&self.prepared.buffers, &CANVAS_KERNELS)?;
         }

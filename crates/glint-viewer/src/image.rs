@@ -207,13 +207,14 @@ impl TracedImage {
         let scene = &doc.scene;
         let materials: Vec<_> = scene.materials.iter().map(|m| gpu_types::pack_material(&specular.apply(m))).collect();
         let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
-        canvas.take_edits(&materials, &lights)?;
+        let (width, height) = canvas.size();
+        let uniforms = gpu_types::scene_uniforms(scene, width, height, lights.len() as u32, canvas.prepared.buffers.bvh_root());
+        canvas.take_edits(&materials, &lights, &uniforms)?;
         let renderer = &canvas.kernels.renderer;
-        renderer.write_materials(&canvas.prepared.buffers, &materials)?;
         let buffers = &canvas.prepared.buffers;
+        renderer.write_materials(buffers, &materials)?;
         renderer.write_lights(buffers, &lights)?;
-        let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), lights.len() as u32, buffers.bvh_root());
-        renderer.write_uniforms(buffers, &uniforms);
+        renderer.write_uniforms(buffers, &uniforms)?;
         self.acc.restart();
         self.syncs += 1;
         Ok(true)

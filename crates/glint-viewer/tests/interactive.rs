@@ -169,7 +169,7 @@ fn edits_in_place_equal_a_fresh_upload() {
     let materials: Vec<_> = edited.materials.iter().map(gpu_types::pack_material).collect();
     renderer().write_lights(&buffers, &lights).unwrap();
     renderer().write_materials(&buffers, &materials).unwrap();
-    renderer().write_uniforms(&buffers, &gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.bvh_root()));
+    renderer().write_uniforms(&buffers, &gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.bvh_root())).unwrap();
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
 
@@ -207,6 +207,29 @@ fn a_material_made_to_reflect_in_place_needs_secondary_rays() {
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
     let (want, _) = renderer().render(&upload(&mirror), &options, &mut |_, _| {}).unwrap();
+    assert_eq!(resolve(&buffers, &options), want);
+}
+
+/// A scene without depth cueing is uploaded without its code; turning it on
+/// in place is refused unless the scene was uploaded editable, and then it
+/// renders as a fresh upload.
+#[test]
+fn depth_cueing_turned_on_in_place_needs_an_editable_upload() {
+    let plain = scene();
+    assert!(plain.depth_cue.is_none());
+    let mut cued = plain.clone();
+    cued.depth_cue = Some(glint_scene::DepthCue { color: glam::Vec3::new(0.2, 0.3, 0.4), near: 1.0, far: 8.0, near_scale: 1.0, far_scale: 0.2 });
+    let mut buffers = upload(&plain);
+    assert!(!buffers.specialization.depth_cue);
+    let uniforms = gpu_types::scene_uniforms(&cued, cued.width, cued.height, cued.lights.iter().filter(|l| l.enabled).count() as u32, buffers.bvh_root());
+    let refused = renderer().write_uniforms(&buffers, &uniforms).unwrap_err().to_string();
+    assert!(refused.contains("depth cueing") && refused.contains("editable"), "{refused}");
+
+    buffers.specialization = buffers.specialization.editable();
+    renderer().write_uniforms(&buffers, &uniforms).unwrap();
+    let options = RenderOptions::default();
+    trace_in_bands(&buffers, &options);
+    let (want, _) = renderer().render(&upload(&cued), &options, &mut |_, _| {}).unwrap();
     assert_eq!(resolve(&buffers, &options), want);
 }
 
