@@ -120,16 +120,8 @@ impl Specialization {
     /// can make, whatever the scene's are: for a scene whose materials, lights
     /// and settings change in place (the viewer's).
     pub fn editable(self) -> Specialization {
-        Specialization {
-            secondary_rays: true,
-            refractions: true,
-            highlights: true,
-            checker: true,
-            attenuation: true,
-            tinted_shadows: true,
-            depth_cue: true,
-            ..self
-        }
+        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, .. } = self;
+        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, ..Specialization::ALL }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Gpu, Image, RenderOptions, Renderer, SceneBuffers};
+use glint_gpu::{Acceleration, Gpu, GpuError, Image, RenderOptions, Renderer, SceneBuffers};
 use glint_scene::gpu_types::{self, View};
 use glint_scene::{LightKind, Scene};
 
@@ -197,16 +197,22 @@ fn a_material_made_to_reflect_in_place_needs_secondary_rays() {
     mirror.materials[1].reflect = glam::Vec3::splat(0.6);
     let materials: Vec<_> = mirror.materials.iter().map(gpu_types::pack_material).collect();
 
-    let mut buffers = upload(&matte);
+    let buffers = upload(&matte);
     assert!(!buffers.specialization.secondary_rays);
-    let refused = renderer().write_materials(&buffers, &materials).unwrap_err().to_string();
-    assert!(refused.contains("eye rays only") && refused.contains("editable"), "{refused}");
+    refused_until_editable(buffers, "eye rays only", &mirror, |b| renderer().write_materials(b, &materials));
+}
 
+/// `write` of an edit to `buffers` is refused, naming `lacking`, until the
+/// scene is uploaded editable; then the edited scene renders as `edited`
+/// freshly uploaded.
+fn refused_until_editable(mut buffers: SceneBuffers, lacking: &str, edited: &Scene, write: impl Fn(&SceneBuffers) -> Result<(), GpuError>) {
+    let refused = write(&buffers).unwrap_err().to_string();
+    assert!(refused.contains(lacking) && refused.contains("editable"), "{refused}");
     buffers.specialization = buffers.specialization.editable();
-    renderer().write_materials(&buffers, &materials).unwrap();
+    write(&buffers).unwrap();
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
-    let (want, _) = renderer().render(&upload(&mirror), &options, &mut |_, _| {}).unwrap();
+    let (want, _) = renderer().render(&upload(edited), &options, &mut |_, _| {}).unwrap();
     assert_eq!(resolve(&buffers, &options), want);
 }
 
@@ -219,18 +225,10 @@ fn depth_cueing_turned_on_in_place_needs_an_editable_upload() {
     assert!(plain.depth_cue.is_none());
     let mut cued = plain.clone();
     cued.depth_cue = Some(glint_scene::DepthCue { color: glam::Vec3::new(0.2, 0.3, 0.4), near: 1.0, far: 8.0, near_scale: 1.0, far_scale: 0.2 });
-    let mut buffers = upload(&plain);
+    let buffers = upload(&plain);
     assert!(!buffers.specialization.depth_cue);
     let uniforms = gpu_types::scene_uniforms(&cued, cued.width, cued.height, cued.lights.iter().filter(|l| l.enabled).count() as u32, buffers.bvh_root());
-    let refused = renderer().write_uniforms(&buffers, &uniforms).unwrap_err().to_string();
-    assert!(refused.contains("depth cueing") && refused.contains("editable"), "{refused}");
-
-    buffers.specialization = buffers.specialization.editable();
-    renderer().write_uniforms(&buffers, &uniforms).unwrap();
-    let options = RenderOptions::default();
-    trace_in_bands(&buffers, &options);
-    let (want, _) = renderer().render(&upload(&cued), &options, &mut |_, _| {}).unwrap();
-    assert_eq!(resolve(&buffers, &options), want);
+    refused_until_editable(buffers, "depth cueing", &cued, |b| renderer().write_uniforms(b, &uniforms));
 }
 
 #[test]
