@@ -45,10 +45,18 @@ fn every_specialisation_validates() {
             let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
             Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }
         });
-        let plain = Specialization { smooth_triangles: false, highlights: false, checker: false, attenuation: false, ..Specialization::ALL };
-        let mirrors = Specialization { refractions: false, ..Specialization::ALL };
+        let plain = Specialization {
+            smooth_triangles: false,
+            refractions: false,
+            highlights: false,
+            checker: false,
+            attenuation: false,
+            tinted_shadows: false,
+            depth_cue: false,
+            ..Specialization::ALL
+        };
         let single_rays = views.map(|s| Specialization { packets: false, ..s });
-        for specialization in kinds.chain(views).chain(single_rays).chain([plain, mirrors]) {
+        for specialization in kinds.chain(views).chain(single_rays).chain([plain]) {
             if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization).unwrap().validate() {
                 panic!("{kernel:?} for {specialization}: {e}");
             }
