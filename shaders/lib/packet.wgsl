@@ -3,16 +3,17 @@
 // Ray Tracing", 2001). A software rasteriser pays for every load a SIMD lane
 // makes and every step of its loops; four neighbouring eye rays visit nearly
 // the same nodes, so one lane tracing all four loads each node and primitive
-// once and steps once for them, while the box and triangle tests run on vec4s
-// of the four rays. The packet visits every node one of its rays enters, and
-// each ray gets exactly the hit `traverse` gives it alone: the same tests in
-// the same arithmetic (triangle_intersect4), the same tie-break.
+// once and steps once for them; one interval test stands for the four rays'
+// box tests, and the triangle test runs on vec4s of the four rays. The packet
+// visits every node one of its rays enters, and each ray gets exactly the hit
+// `traverse` gives it alone: the same triangle test in the same arithmetic
+// (triangle_intersect4), the same tie-break.
 // import: bindings bvh primitive ray_frame triangle types
 
 struct Packet {
     rays: Rays4,
-    inv_dir: Vec3x4,
     frame: RayFrame4,
+    bounds: PacketBounds,
 }
 
 struct PacketHit {
@@ -22,31 +23,48 @@ struct PacketHit {
     object: vec4<u32>,
 }
 
+// What one box test for all four rays needs (interval arithmetic: Boulos,
+// Wald et al., "Packet-based Whitted and distribution ray tracing", 2007): per
+// axis the range of the rays' inverse directions and the origins that bound
+// their distances to a box's near and far planes. One scalar test then stands
+// for four slab tests.
+struct PacketBounds {
+    // The near plane's corner byte (0 low, 8 high), as in `traverse`.
+    near_byte: vec3<u32>,
+    near_origin: vec3<f32>,
+    far_origin: vec3<f32>,
+    inv_lo: vec3<f32>,
+    inv_hi: vec3<f32>,
+    // Axes on which no ray runs parallel to the planes and all four go the
+    // same way; the others do not cull.
+    bounded: vec3<bool>,
+}
+
 fn packet(rays: Rays4) -> Packet {
     let one = vec4<f32>(1.0);
-    return Packet(rays, Vec3x4(one / rays.dir.x, one / rays.dir.y, one / rays.dir.z), ray_frame4(rays));
+    let inv = Vec3x4(one / rays.dir.x, one / rays.dir.y, one / rays.dir.z);
+    let inv_lo = vec3<f32>(min4(inv.x), min4(inv.y), min4(inv.z));
+    let inv_hi = vec3<f32>(max4(inv.x), max4(inv.y), max4(inv.z));
+    let o = rays.origin;
+    let o_lo = vec3<f32>(min4(o.x), min4(o.y), min4(o.z));
+    let o_hi = vec3<f32>(max4(o.x), max4(o.y), max4(o.z));
+    let negative = inv_hi < vec3<f32>(0.0);
+    let bounded = ((inv_lo > vec3<f32>(0.0)) & (inv_hi <= vec3<f32>(MISS))) | (negative & (inv_lo >= vec3<f32>(-MISS)));
+    let near_byte = select(vec3<u32>(0u), vec3<u32>(8u), negative);
+    let bounds = PacketBounds(near_byte, select(o_hi, o_lo, negative), select(o_lo, o_hi, negative), inv_lo, inv_hi, bounded);
+    return Packet(rays, ray_frame4(rays), bounds);
 }
 
-// The distances of four rays to a box's near and far plane on one axis.
-struct Span4 {
-    near: vec4<f32>,
-    far: vec4<f32>,
-}
-
-fn axis_span4(lo: f32, hi: f32, origin: vec4<f32>, inv_dir: vec4<f32>) -> Span4 {
-    let negative = inv_dir < vec4<f32>(0.0);
-    return Span4((select(vec4<f32>(lo), vec4<f32>(hi), negative) - origin) * inv_dir, (select(vec4<f32>(hi), vec4<f32>(lo), negative) - origin) * inv_dir);
-}
-
-// Each ray's entry into the box [lo, hi] as `slab_entry` gives it, or MISS.
-fn packet_entry(p: Packet, lo: vec3<f32>, hi: vec3<f32>, t_max: vec4<f32>) -> vec4<f32> {
-    let x = axis_span4(lo.x, hi.x, p.rays.origin.x, p.inv_dir.x);
-    let y = axis_span4(lo.y, hi.y, p.rays.origin.y, p.inv_dir.y);
-    let z = axis_span4(lo.z, hi.z, p.rays.origin.z, p.inv_dir.z);
-    let near = max(max(x.near, y.near), z.near);
-    let far = min(min(x.far, y.far), z.far);
-    let zero = vec4<f32>(0.0);
-    return select(vec4<f32>(MISS), max(near, zero), (near <= far) & (far >= zero) & (near <= t_max));
+// A lower bound of the four rays' entries into the box whose near and far
+// corners are `near` and `far` (each ray's as `slab_entry` gives it, t_max the
+// largest of theirs), or MISS when none of them enters it. Rounding is monotonic,
+// so a product of the extreme operands bounds each ray's own product.
+fn packet_entry(b: PacketBounds, near: vec3<f32>, far: vec3<f32>, t_max: f32) -> f32 {
+    let d_near = near - b.near_origin;
+    let d_far = far - b.far_origin;
+    let t_near = select(vec3<f32>(-MISS), min(d_near * b.inv_lo, d_near * b.inv_hi), b.bounded);
+    let t_far = select(vec3<f32>(MISS), max(d_far * b.inv_lo, d_far * b.inv_hi), b.bounded);
+    return slab_entry(t_near, t_far, t_max);
 }
 
 // `test_prims` for a packet's closest hits: primitive i against its four rays.
@@ -87,8 +105,8 @@ fn max4(v: vec4<f32>) -> f32 {
 }
 
 // `traverse` for the closest hits of a packet's rays in (0, MISS): the same
-// while-while walk, each child entered when one of the rays enters it, the
-// child entered first that one of them enters first.
+// while-while walk, each child entered when the interval test says one of the
+// rays may enter it, so each ray visits at least the nodes it visits alone.
 fn traverse_packet(p: Packet) -> PacketHit {
     var hit = PacketHit(vec4<f32>(MISS), vec4<u32>(0u), vec4<u32>(0u));
     if HAS_PLANES {
@@ -103,16 +121,22 @@ fn traverse_packet(p: Packet) -> PacketHit {
         if (index & LEAF) == 0u {
             loop {
                 let node = nodes[index];
-                let left_lo = decode(grid, node.quantized, vec3<u32>(0u));
-                let left_hi = decode(grid, node.quantized, vec3<u32>(8u));
-                let right_lo = decode(grid, node.quantized, vec3<u32>(16u));
-                let right_hi = decode(grid, node.quantized, vec3<u32>(24u));
-                let t_left = min4(packet_entry(p, left_lo, left_hi, hit.t));
-                let t_right = min4(packet_entry(p, right_lo, right_hi, hit.t));
+                let near_byte = p.bounds.near_byte;
+                let far_byte = near_byte ^ vec3<u32>(8u);
+                let left_near = decode(grid, node.quantized, near_byte);
+                let left_far = decode(grid, node.quantized, far_byte);
+                let right_near = decode(grid, node.quantized, near_byte + 16u);
+                let right_far = decode(grid, node.quantized, far_byte + 16u);
+                let t_bound = max4(hit.t);
+                let t_left = packet_entry(p.bounds, left_near, left_far, t_bound);
+                let t_right = packet_entry(p.bounds, right_near, right_far, t_bound);
                 index = descend(node, t_left, t_right, &top);
                 if index != NEEDS_POP {
                     let near_first = t_left <= t_right;
-                    grid = derived_grid(select(right_lo, left_lo, near_first), select(right_hi, left_hi, near_first));
+                    let near = select(right_near, left_near, near_first);
+                    let far = select(right_far, left_far, near_first);
+                    let negative = near_byte != vec3<u32>(0u);
+                    grid = derived_grid(select(near, far, negative), select(far, near, negative));
                 }
                 if (index & LEAF) != 0u {
                     break;
