@@ -62,6 +62,29 @@ fn decode(grid: Grid, q: vec3<u32>, shift: vec3<u32>) -> vec3<f32> {
     return grid.origin + vec3<f32>((q >> shift) & vec3<u32>(0xffu)) * cell;
 }
 
+// A node's two child boxes in world space, each by its corners on the side a
+// ray meets first (`near_byte` per axis, as in `traverse`) and last.
+struct ChildCorners {
+    left_near: vec3<f32>,
+    left_far: vec3<f32>,
+    right_near: vec3<f32>,
+    right_far: vec3<f32>,
+}
+
+fn child_corners(grid: Grid, q: vec3<u32>, near_byte: vec3<u32>) -> ChildCorners {
+    let far_byte = near_byte ^ vec3<u32>(8u);
+    return ChildCorners(decode(grid, q, near_byte), decode(grid, q, far_byte), decode(grid, q, near_byte + 16u), decode(grid, q, far_byte + 16u));
+}
+
+// The grid of the child a walk descends into (the left one when `left`): the
+// one over the box just tested.
+fn entered_grid(c: ChildCorners, left: bool, near_byte: vec3<u32>) -> Grid {
+    let near = select(c.right_near, c.left_near, left);
+    let far = select(c.right_far, c.left_far, left);
+    let negative = near_byte != vec3<u32>(0u);
+    return derived_grid(select(near, far, negative), select(far, near, negative));
+}
+
 // Closest hit in (t_min, t_max) when `any_hit` is false. With `any_hit`, a shadow
 // query: stops at the first opaque occluder (transmittance 0); with `tinted`,
 // transmissive occluders let light through, multiplying the transmittance by
@@ -96,21 +119,12 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
             loop {
                 hit.nodes++;
                 let node = nodes[index];
-                let far_byte = near_byte ^ vec3<u32>(8u);
-                let left_near = decode(grid, node.quantized, near_byte);
-                let left_far = decode(grid, node.quantized, far_byte);
-                let right_near = decode(grid, node.quantized, near_byte + 16u);
-                let right_far = decode(grid, node.quantized, far_byte + 16u);
-                let t_left = slab_entry((left_near - ray.origin) * inv_dir, (left_far - ray.origin) * inv_dir, t_max);
-                let t_right = slab_entry((right_near - ray.origin) * inv_dir, (right_far - ray.origin) * inv_dir, t_max);
+                let c = child_corners(grid, node.quantized, near_byte);
+                let t_left = slab_entry((c.left_near - ray.origin) * inv_dir, (c.left_far - ray.origin) * inv_dir, t_max);
+                let t_right = slab_entry((c.right_near - ray.origin) * inv_dir, (c.right_far - ray.origin) * inv_dir, t_max);
                 index = descend(node, t_left, t_right, &top);
                 if index != NEEDS_POP {
-                    // Descending: the child's grid is the one over the box just tested.
-                    let near_first = t_left <= t_right;
-                    let near = select(right_near, left_near, near_first);
-                    let far = select(right_far, left_far, near_first);
-                    let negative = near_byte != vec3<u32>(0u);
-                    grid = derived_grid(select(near, far, negative), select(far, near, negative));
+                    grid = entered_grid(c, t_left <= t_right, near_byte);
                 }
                 if (index & LEAF) != 0u {
                     break;

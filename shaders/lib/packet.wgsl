@@ -114,6 +114,8 @@ fn traverse_packet(p: Packet) -> PacketHit {
             hit = packet_test(i, p, hit);
         }
     }
+    // The farthest of the four closest hits so far: beyond it no ray needs a node.
+    var t_bound = max4(hit.t);
     var top = 0u;
     var index = uniforms.bvh_root;
     var grid = stored_grid(0u);
@@ -121,22 +123,12 @@ fn traverse_packet(p: Packet) -> PacketHit {
         if (index & LEAF) == 0u {
             loop {
                 let node = nodes[index];
-                let near_byte = p.bounds.near_byte;
-                let far_byte = near_byte ^ vec3<u32>(8u);
-                let left_near = decode(grid, node.quantized, near_byte);
-                let left_far = decode(grid, node.quantized, far_byte);
-                let right_near = decode(grid, node.quantized, near_byte + 16u);
-                let right_far = decode(grid, node.quantized, far_byte + 16u);
-                let t_bound = max4(hit.t);
-                let t_left = packet_entry(p.bounds, left_near, left_far, t_bound);
-                let t_right = packet_entry(p.bounds, right_near, right_far, t_bound);
+                let c = child_corners(grid, node.quantized, p.bounds.near_byte);
+                let t_left = packet_entry(p.bounds, c.left_near, c.left_far, t_bound);
+                let t_right = packet_entry(p.bounds, c.right_near, c.right_far, t_bound);
                 index = descend(node, t_left, t_right, &top);
                 if index != NEEDS_POP {
-                    let near_first = t_left <= t_right;
-                    let near = select(right_near, left_near, near_first);
-                    let far = select(right_far, left_far, near_first);
-                    let negative = near_byte != vec3<u32>(0u);
-                    grid = derived_grid(select(near, far, negative), select(far, near, negative));
+                    grid = entered_grid(c, t_left <= t_right, p.bounds.near_byte);
                 }
                 if (index & LEAF) != 0u {
                     break;
@@ -148,8 +140,9 @@ fn traverse_packet(p: Packet) -> PacketHit {
             for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
                 hit = packet_test(i, p, hit);
             }
+            t_bound = max4(hit.t);
         }
-        index = pop(&top, max4(hit.t), &grid);
+        index = pop(&top, t_bound, &grid);
     }
     return hit;
 }
