@@ -90,3 +90,22 @@ vertices = [[0.2, 0, 1], [1.6, 0, 1], [0.9, 1.4, 0.6]]
     );
     assert_packets_trace_as_single_rays(&scene, "plane, sphere and triangle");
 }
+
+#[test]
+fn packets_hit_what_single_rays_hit_on_the_shared_edges_and_corners_of_polygons() {
+    // Unit squares, each an object of its own, seen straight on by an
+    // orthographic camera whose pixels are a quarter unit: every fourth row
+    // and column of eye rays runs along the squares' shared edges, and where
+    // they cross through shared corners, the cases the crossing rule's ties
+    // decide.
+    let mut toml = String::from(
+        "[image]\nwidth = 37\nheight = 27\n\n[camera]\ntype = \"orthographic\"\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nheight = 6.75\n",
+    );
+    for x in -4..4 {
+        for y in -3..3 {
+            let (x1, y1) = (x + 1, y + 1);
+            toml += &format!("\n[[object]]\ntype = \"polygon\"\nvertices = [[{x}, {y}, 0], [{x1}, {y}, 0], [{x1}, {y1}, 0], [{x}, {y1}, 0]]\n");
+        }
+    }
+    assert_packets_trace_as_single_rays(&support::parse(&toml), "a grid of squares");
+}

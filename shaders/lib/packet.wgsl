@@ -4,11 +4,11 @@
 // makes and every step of its loops; four neighbouring eye rays visit nearly
 // the same nodes, so one lane tracing all four loads each node and primitive
 // once and steps once for them; one interval test stands for the four rays'
-// box tests, and the triangle test runs on vec4s of the four rays. The packet
-// visits every node one of its rays enters, and each ray gets exactly the hit
-// `traverse` gives it alone: the same triangle test in the same arithmetic
-// (triangle_intersect4), the same tie-break.
-// import: bindings bvh primitive ray_frame triangle types
+// box tests, and the triangle, polygon and plane tests run on vec4s of the four
+// rays. The packet visits every node one of its rays enters, and each ray gets
+// exactly the hit `traverse` gives it alone: the same tests in the same
+// arithmetic (triangle_intersect4 and the like), the same tie-break.
+// import: bindings bvh cone plane polygon ray_frame sphere triangle types
 
 struct Packet {
     rays: Rays4,
@@ -71,18 +71,29 @@ fn packet_entry(b: PacketBounds, near: vec3<f32>, far: vec3<f32>, t_max: f32) ->
 fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
     let bound = bitcast<vec4<f32>>(bitcast<vec4<u32>>(hit.t) + vec4<u32>(1u));
     var t = vec4<f32>(MISS);
+    let kind = prim_kind(prims[i]);
     let only_triangles = !(HAS_SPHERES || HAS_POLYGONS || HAS_CONES || HAS_PLANES);
-    if only_triangles || (HAS_TRIANGLES && prim_kind(prims[i]) == PRIM_TRIANGLE) {
+    let only_polygons = !(HAS_SPHERES || HAS_TRIANGLES || HAS_CONES || HAS_PLANES);
+    if only_triangles || (HAS_TRIANGLES && kind == PRIM_TRIANGLE) {
         t = triangle_intersect4(prims[i], p.frame, vec4<f32>(0.0), bound);
+    } else if only_polygons || (HAS_POLYGONS && kind == PRIM_POLYGON) {
+        t = polygon_intersect4(prims[i], p.rays, p.frame, vec4<f32>(0.0), bound);
+    } else if HAS_PLANES && kind == PRIM_PLANE {
+        t = plane_intersect4(prims[i], p.rays, vec4<f32>(0.0), bound);
     } else {
-        // Other kinds one ray at a time (scenes of them trace fast alone), in
-        // a loop whose count the compiler does not know, so that it keeps one
-        // copy of the tests instead of four.
+        // Spheres and cones one ray at a time (scenes of them trace fast
+        // alone), in a loop whose count the compiler does not know, so that
+        // it keeps one copy of the tests instead of four.
         var left = 0xfu;
         while left != 0u {
             let k = firstTrailingBit(left);
             left &= left - 1u;
-            t[k] = intersect_prim(i, ray_of(p.rays, k), frame_of(p.frame, k), 0.0, bound[k]);
+            let ray = ray_of(p.rays, k);
+            if HAS_SPHERES && kind == PRIM_SPHERE {
+                t[k] = sphere_intersect(prims[i], ray, 0.0, bound[k]);
+            } else if HAS_CONES {
+                t[k] = cone_intersect(prims[i], ray, 0.0, bound[k]);
+            }
         }
     }
     // t < hit.t fails for a miss (MISS is the largest distance).

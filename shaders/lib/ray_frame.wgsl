@@ -81,10 +81,6 @@ fn ray_frame4(rays: Rays4) -> RayFrame4 {
     return RayFrame4(rays.origin, gather4(f0.x, f1.x, f2.x, f3.x), gather4(f0.y, f1.y, f2.y, f3.y), gather4(f0.z, f1.z, f2.z, f3.z));
 }
 
-fn frame_of(f: RayFrame4, k: u32) -> RayFrame {
-    return RayFrame(vector_of(f.origin, k), vector_of(f.x, k), vector_of(f.y, k), vector_of(f.z, k));
-}
-
 // `to_frame` for four rays at once.
 fn to_frame4(f: RayFrame4, p: vec3<f32>) -> Vec3x4 {
     let qx = p.x - f.origin.x;

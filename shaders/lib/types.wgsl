@@ -134,6 +134,12 @@ fn vector_of(v: Vec3x4, k: u32) -> vec3<f32> {
     return vec3<f32>(v.x[k], v.y[k], v.z[k]);
 }
 
+// `dot(a, b)` for each of four vectors b, by the same `dot` one ray uses, so
+// that each gets the same bits as alone.
+fn dot4(a: vec3<f32>, b: Vec3x4) -> vec4<f32> {
+    return vec4<f32>(dot(a, vector_of(b, 0u)), dot(a, vector_of(b, 1u)), dot(a, vector_of(b, 2u)), dot(a, vector_of(b, 3u)));
+}
+
 // Four rays, the eye rays of a 2×2 block of pixels (packet.wgsl).
 struct Rays4 {
     origin: Vec3x4,
