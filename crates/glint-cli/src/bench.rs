@@ -73,6 +73,10 @@ struct Measurement {
 
 pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
+    if args.cold {
+        // As a first render of each scene compiles them. SAFETY: no thread has been started yet.
+        unsafe { glint_gpu::compile_for_samples(u64::from(args.width) * u64::from(args.height), false) };
+    }
     let gpu = Gpu::new()?;
     if args.cold {
         return crate::bench_cold::run(&gpu, &scenes, args.width, args.height, args.json);

@@ -14,11 +14,15 @@ use crate::{exit, Failure};
 
 pub fn run(gpu: &Gpu, scenes: &[PathBuf], width: u32, height: u32, json: bool) -> Result<(), Failure> {
     if !json {
-        let cache = match std::env::var("MESA_SHADER_CACHE_DISABLE") {
-            Ok(v) if v == "true" || v == "1" => "Mesa's shader cache disabled",
-            _ => "Mesa's shader cache enabled: set MESA_SHADER_CACHE_DISABLE=true for a fresh machine's times",
+        let cache = match glint_gpu::shader_cache_disabled() {
+            true => "Mesa's shader cache disabled",
+            false => "Mesa's shader cache enabled: set MESA_SHADER_CACHE_DISABLE=true for a fresh machine's times",
         };
-        eprintln!("{} — {width}x{height}, {cache}; a kernel's compile = its pipeline's creation + its first run − its second", gpu.info().name);
+        let kernels = if glint_gpu::kernels_compile_quickly() { "quick kernels (no LLVM optimisation passes)" } else { "optimised kernels" };
+        eprintln!(
+            "{} — {width}x{height}, {kernels}, {cache}; a kernel's compile = its pipeline's creation + its first run − its second",
+            gpu.info().name
+        );
         println!("{:<22} {:<44} {:>17} {:>19} {:>19}", "scene", "kinds", "trace compile ms", "primary compile ms", "resolve compile ms");
     }
     for path in scenes {

@@ -310,6 +310,10 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         scene.render.cutoff = 0.0;
     }
 
+    let rendered_scenes = glint_gpu::RenderedScenes::of_shader_cache();
+    let rendered_before = rendered_scenes.contains(&args.scene);
+    // SAFETY: loading the scene and planning the frames started no thread.
+    unsafe { glint_gpu::compile_for_samples(samples(args, region, plan.frames.len() as u64), rendered_before) };
     let gpu = Gpu::new()?;
     if let Some(warning) = gpu.driver_warning() {
         eprintln!("glint: {warning}");
@@ -367,6 +371,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     let elapsed = start.elapsed();
     bar.finish_and_clear();
+    rendered_scenes.insert(&args.scene);
 
     if !args.quiet {
         let part = if region != Region::whole(width, height) { format!(" (region {region} of {width}x{height})") } else { String::new() };
@@ -388,7 +393,8 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     plan.encode_video(args.quiet)?;
     if args.stats {
-        print_stats(&stats, args.json);
+        let quick_kernels = gpu.adapter.get_info().name.contains("llvmpipe").then(glint_gpu::kernels_compile_quickly);
+        print_stats(&stats, quick_kernels, args.json);
     }
     Ok(())
 }
@@ -463,17 +469,33 @@ fn progress_bar(quiet: bool) -> ProgressBar {
     bar
 }
 
-fn print_stats(stats: &RayStats, json: bool) {
+/// The samples a render command traces in all: per pixel of the region and
+/// frame, the output's samples and one per AOV.
+fn samples(args: &RenderArgs, region: Region, frames: u64) -> u64 {
+    let per_pixel = if args.view.view().is_primary_only() { 1 } else { u64::from(args.spp) } + args.aov.len() as u64;
+    u64::from(region.width()) * u64::from(region.height()) * frames * per_pixel
+}
+
+/// The rays traced, and on lavapipe whether its kernels skipped LLVM's
+/// optimisation passes (`quick_kernels`).
+fn print_stats(stats: &RayStats, quick_kernels: Option<bool>, json: bool) {
     if json {
-        let value = serde_json::json!({
+        let mut value = serde_json::json!({
             "eye_hit": stats.eye_hit,
             "eye_miss": stats.eye_miss,
             "shadow": stats.shadow,
             "reflect": stats.reflect,
             "refract": stats.refract,
         });
+        if let Some(quick) = quick_kernels {
+            value["quick_kernels"] = quick.into();
+        }
         println!("{value}");
     } else {
+        if let Some(quick) = quick_kernels {
+            let how = if quick { "quickly, without LLVM's optimisation passes (a first, small render)" } else { "optimised" };
+            println!("kernels compiled {how}");
+        }
         println!("eye rays (hit):  {}", stats.eye_hit);
         println!("eye rays (miss): {}", stats.eye_miss);
         println!("shadow rays:     {}", stats.shadow);

@@ -112,6 +112,43 @@ fn lavapipe_gets_the_width_glint_asks_for_and_it_changes_no_pixel() {
 }
 
 #[test]
+fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scenes().join("showcase.toml");
+    // The image's bytes and whether lavapipe's kernels skipped LLVM's passes,
+    // for a render of `size` pixels at `spp` with the shader cache under
+    // `cache_home` (None: disabled) and `perf` as GALLIVM_PERF (None: unset).
+    let render = |cache_home: Option<&str>, perf: Option<&str>, size: &str, spp: &str| {
+        let out = dir.path().join("out.exr");
+        let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
+        let args = ["render", scene.to_str().unwrap(), "--width", size, "--height", size, "--spp", spp, "--stats", "--json", "-o", out.to_str().unwrap()];
+        command.args(args).env(glint_gpu::ADAPTER_ENV, "llvmpipe").env_remove(glint_gpu::SHADER_CACHE_ENV);
+        match cache_home {
+            Some(home) => command.env("XDG_CACHE_HOME", dir.path().join(home)).env_remove("MESA_SHADER_CACHE_DISABLE"),
+            None => command.env("MESA_SHADER_CACHE_DISABLE", "true"),
+        };
+        match perf {
+            Some(flags) => command.env(glint_gpu::LAVAPIPE_PERF_ENV, flags),
+            None => command.env_remove(glint_gpu::LAVAPIPE_PERF_ENV),
+        };
+        let o = command.output().expect("glint runs");
+        assert!(o.status.success(), "{}", stderr(&o));
+        let stats: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--stats --json prints JSON");
+        (std::fs::read(out).unwrap(), stats["quick_kernels"].as_bool().expect("lavapipe reports its kernels"))
+    };
+    let (quick, was_quick) = render(Some("a"), None, "96", "1");
+    assert!(was_quick, "a first 96x96 render compiled optimised kernels");
+    let (optimised, was_quick) = render(Some("a"), None, "96", "1");
+    assert!(!was_quick, "a second render of the scene compiled quick kernels");
+    assert!(quick == optimised, "quick kernels changed the image");
+    assert!(render(None, None, "96", "1").1, "without a shader cache a scene rendered before compiled optimised kernels");
+    assert!(!render(Some("b"), Some(""), "96", "1").1, "an empty GALLIVM_PERF did not keep the optimised kernels");
+    // Just over the limit in samples, not in pixels.
+    let side = (glint_gpu::QUICK_COMPILE_MAX_SAMPLES / 16).isqrt() + 1;
+    assert!(!render(Some("c"), None, &side.to_string(), "16").1, "a render of {} samples compiled quick kernels", side * side * 16);
+}
+
+#[test]
 fn bad_inputs_fail_with_one_line_and_leave_no_file() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("bad.toml");

@@ -2,7 +2,7 @@
 //! device is made, and what it warns about once one is open.
 
 use std::ffi::OsString;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The variable by which lavapipe's compiler (llvmpipe) picks its SIMD width.
 pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
@@ -14,6 +14,17 @@ pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
 pub const LAVAPIPE_WIDTH: &str = "128";
 /// The variable naming the directory Mesa caches compiled shaders in.
 pub const SHADER_CACHE_ENV: &str = "MESA_SHADER_CACHE_DIR";
+/// The variable by which lavapipe's compiler (gallivm) takes its performance
+/// flags; Mesa keys its shader cache by them.
+pub const LAVAPIPE_PERF_ENV: &str = "GALLIVM_PERF";
+/// The flag that skips LLVM's optimisation passes over a kernel: it compiles
+/// in about half the time and runs about half as fast, to the same bits.
+pub const QUICK_COMPILE_FLAG: &str = "nopt";
+/// Up to this many samples (pixels × samples per pixel × images) a command
+/// renders, the compile that a quick kernel saves outweighs the time it loses
+/// in running: measured on the SPD scenes, the break-even of a cold shaded
+/// render lies near 520,000 eye rays (docs/performance.md, "Quick kernels").
+pub const QUICK_COMPILE_MAX_SAMPLES: u64 = 400_000;
 
 /// Asks lavapipe for [`LAVAPIPE_WIDTH`]-bit vectors unless the environment
 /// already chooses a width, and gives each width its own shader cache unless
@@ -36,6 +47,76 @@ pub unsafe fn prepare_lavapipe() {
             // SAFETY: as above.
             unsafe { std::env::set_var(SHADER_CACHE_ENV, dir) };
         }
+    }
+}
+
+/// Asks lavapipe to compile without LLVM's optimisation passes when a command
+/// renders `samples` samples in all of a scene not rendered before
+/// ([`quick_compile_pays`]), unless the environment sets `GALLIVM_PERF` (set
+/// empty, it keeps the optimised kernels). Lavapipe reads the flags when the
+/// first device is made.
+///
+/// # Safety
+/// Changes the process environment: call it before any other thread runs.
+pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
+    if std::env::var_os(LAVAPIPE_PERF_ENV).is_none() && quick_compile_pays(samples, rendered_before) {
+        // SAFETY: the caller guarantees no other thread reads the environment.
+        unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };
+    }
+}
+
+/// Whether a command of `samples` samples is better served by quick kernels:
+/// a small render of a scene not rendered before. A scene rendered before is
+/// likely rendered again, and with optimised kernels Mesa's cache then holds
+/// the kernels that run fastest; a quick kernel would be cached and rerun.
+pub fn quick_compile_pays(samples: u64, rendered_before: bool) -> bool {
+    !rendered_before && samples <= QUICK_COMPILE_MAX_SAMPLES
+}
+
+/// Whether the kernels this process compiles on lavapipe skip LLVM's
+/// optimisation passes, as its `GALLIVM_PERF` asks.
+pub fn kernels_compile_quickly() -> bool {
+    std::env::var(LAVAPIPE_PERF_ENV).is_ok_and(|flags| flags.split([',', ' ']).any(|flag| flag == QUICK_COMPILE_FLAG))
+}
+
+/// Whether `MESA_SHADER_CACHE_DISABLE` turns Mesa's shader cache off, as
+/// Mesa reads a boolean variable.
+pub fn shader_cache_disabled() -> bool {
+    std::env::var("MESA_SHADER_CACHE_DISABLE").is_ok_and(|v| matches!(v.to_ascii_lowercase().as_str(), "1" | "true" | "yes" | "y" | "on"))
+}
+
+/// The scenes rendered on this machine, one empty file each (named by a hash
+/// of the scene's path) in a directory inside Mesa's shader cache: none when
+/// the cache is disabled, since no kernel outlives its process then.
+pub struct RenderedScenes {
+    dir: Option<PathBuf>,
+}
+
+impl RenderedScenes {
+    /// The record of the shader cache this process uses (call it after
+    /// [`prepare_lavapipe`], which names the cache).
+    pub fn of_shader_cache() -> Self {
+        let cache = std::env::var_os(SHADER_CACHE_ENV).filter(|dir| !dir.is_empty() && !shader_cache_disabled());
+        Self { dir: cache.map(|dir| PathBuf::from(dir).join("glint-rendered-scenes")) }
+    }
+
+    pub fn contains(&self, scene: &Path) -> bool {
+        self.marker(scene).is_some_and(|marker| marker.exists())
+    }
+
+    /// Records `scene` as rendered. Best effort: a cache that cannot be
+    /// written costs the next render quick kernels, nothing else.
+    pub fn insert(&self, scene: &Path) {
+        if let (Some(dir), Some(marker)) = (&self.dir, self.marker(scene)) {
+            let _ = std::fs::create_dir_all(dir).and_then(|()| std::fs::write(marker, []));
+        }
+    }
+
+    fn marker(&self, scene: &Path) -> Option<PathBuf> {
+        use std::hash::{Hash, Hasher};
+        let mut hasher = std::hash::DefaultHasher::new();
+        std::fs::canonicalize(scene).unwrap_or_else(|_| scene.to_path_buf()).hash(&mut hasher);
+        Some(self.dir.as_ref()?.join(format!("{:016x}", hasher.finish())))
     }
 }
 
@@ -89,6 +170,28 @@ mod tests {
         assert!(config.lines().any(|l| l == line), ".cargo/config.toml lacks `{line}`");
         let cache = format!("target/lavapipe-{LAVAPIPE_WIDTH}");
         assert!(config.contains(&cache), ".cargo/config.toml lacks the cache {cache}");
+    }
+
+    #[test]
+    fn quick_kernels_only_for_small_renders_of_new_scenes() {
+        assert!(quick_compile_pays(512 * 512, false));
+        assert!(quick_compile_pays(QUICK_COMPILE_MAX_SAMPLES, false));
+        assert!(!quick_compile_pays(QUICK_COMPILE_MAX_SAMPLES + 1, false));
+        assert!(!quick_compile_pays(1024 * 1024, false));
+        assert!(!quick_compile_pays(64 * 64, true));
+    }
+
+    #[test]
+    fn remembers_rendered_scenes_by_path() {
+        let dir = tempfile::tempdir().unwrap();
+        let scenes = RenderedScenes { dir: Some(dir.path().join("rendered")) };
+        let (a, b) = (dir.path().join("a.toml"), dir.path().join("b.toml"));
+        assert!(!scenes.contains(&a));
+        scenes.insert(&a);
+        assert!(scenes.contains(&a) && !scenes.contains(&b));
+        let none = RenderedScenes { dir: None };
+        none.insert(&a);
+        assert!(!none.contains(&a), "without a shader cache nothing is remembered");
     }
 
     #[test]

@@ -22,7 +22,10 @@ pub mod stitch;
 mod tiles;
 
 pub use device::{adapter_rank, backends, Gpu, ADAPTER_ENV};
-pub use lavapipe::{old_lavapipe_warning, prepare_lavapipe, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV, SHADER_CACHE_ENV};
+pub use lavapipe::{
+    compile_for_samples, kernels_compile_quickly, old_lavapipe_warning, prepare_lavapipe, shader_cache_disabled, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
+    QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
+};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
