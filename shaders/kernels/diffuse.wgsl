@@ -4,13 +4,13 @@
 // software rasteriser's compile of every data view (depth, normal, id…).
 // import: bindings bvh camera checker diffuse_view dispatch primitive
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)
 fn diffuse_main(
-    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(local_invocation_id) lid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let pixel = band_pixel(gid, 1u);
+    let pixel = band_pixel(wid, lid, groups, vec2<u32>(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT), 1u);
     if in_band(pixel) {
         // The pixel centre, like the data views: the view is not averaged.
         let eye = camera_ray(vec2<f32>(pixel) + 0.5);

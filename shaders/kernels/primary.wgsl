@@ -28,15 +28,15 @@ fn primary_view(eye: Ray, t: f32, prim: u32) -> vec3<f32> {
     }
 }
 
-@compute @workgroup_size(8, 4)
+@compute @workgroup_size(BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT)
 fn primary_main(
-    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(local_invocation_id) lid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     // An invocation traces a 2×2 block of pixels with PACKETS, else one pixel;
     // bit k of `block` stands for pixel k of it, left to right, top to bottom.
-    let corner = band_pixel(gid, select(1u, 2u, PACKETS));
+    let corner = band_pixel(wid, lid, groups, vec2<u32>(BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT), select(1u, 2u, PACKETS));
     let block = select(1u, 0xfu, PACKETS);
     var hits: PacketHit;
     var nodes = vec4<u32>(0u);

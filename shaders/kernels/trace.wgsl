@@ -3,13 +3,13 @@
 // colour: how deep it went, and how many rays it took.
 // import: bvh camera dispatch primitive ray_tree sample types
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)
 fn trace_main(
-    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(local_invocation_id) lid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let pixel = band_pixel(gid, 1u);
+    let pixel = band_pixel(wid, lid, groups, vec2<u32>(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT), 1u);
     if in_band(pixel) {
         let color = trace_pixel(camera_ray(vec2<f32>(pixel) + sample_offset(pixel)));
         switch dispatch_view() {

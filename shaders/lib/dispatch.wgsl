@@ -1,6 +1,6 @@
 // What every tracing kernel does around its rays: which pixel of the band an
 // invocation has, adding its sample to the pixel's sum, and counting rays.
-// import: bindings
+// import: bindings spread
 
 var<private> local_stats: array<u32, STAT_COUNT>;
 
@@ -29,9 +29,9 @@ fn dispatch_view() -> u32 {
 
 // The pixel an invocation traces in the current band, if the band covers one;
 // the top-left pixel of its block for a kernel whose invocations trace blocks
-// of `side`×`side` pixels.
-fn band_pixel(gid: vec3<u32>, side: u32) -> vec2<u32> {
-    return side * gid.xy + dispatch.origin;
+// of `side`×`side` pixels. `size` is the kernel's workgroup size.
+fn band_pixel(wid: vec3<u32>, lid: vec3<u32>, groups: vec3<u32>, size: vec2<u32>, side: u32) -> vec2<u32> {
+    return side * (spread_workgroup(wid, groups) * size + lid.xy) + dispatch.origin;
 }
 
 // Pixel k of the 2×2 block whose top-left pixel is `corner`, left to right,

@@ -51,6 +51,7 @@ sources![
     "lib/shadow.wgsl",
     "lib/checker.wgsl",
     "lib/shade.wgsl",
+    "lib/spread.wgsl",
     "lib/dispatch.wgsl",
     "lib/ray_tree.wgsl",
     "lib/diffuse_view.wgsl",
@@ -117,7 +118,12 @@ impl Kernel {
     /// The invocations of one workgroup across and down (`@workgroup_size`)
     /// of a kernel that traces row bands (trace, primary, diffuse).
     pub fn workgroup_size(self) -> [u32; 2] {
-        if self == Kernel::Primary { [8, 4] } else { [8, 8] }
+        use glint_scene::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
+        if self == Kernel::Primary {
+            [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT]
+        } else {
+            [BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT]
+        }
     }
 
     pub fn entry_point(self) -> &'static str {

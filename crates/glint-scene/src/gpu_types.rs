@@ -104,6 +104,16 @@ shared_constants! {
     /// integer division is one per lane on a software rasteriser).
     STAT_SLOTS: u32 = 1024;
 
+    /// The invocations of a workgroup of the kernels that trace row bands,
+    /// across and down (the primary kernel's are half as tall, since with
+    /// packets each of its invocations traces two rows).
+    BAND_WORKGROUP_WIDTH: u32 = 8;
+    BAND_WORKGROUP_HEIGHT: u32 = 8;
+    PRIMARY_WORKGROUP_HEIGHT: u32 = 4;
+    /// Strips of a band that every run of a dispatch's workgroups shares
+    /// (`spread_workgroup`): a power of two, divided by with a shift.
+    SPREAD_STRIPS: u32 = 16;
+
     /// The distance of a ray that hits nothing, and the depth view's value there.
     MISS: f32 = 3.4e38;
 
@@ -142,6 +152,7 @@ shared_constants! {
 }
 
 const _: () = assert!(STAT_SLOTS.is_power_of_two(), "flush_ray_counts takes the slot with a mask");
+const _: () = assert!(SPREAD_STRIPS.is_power_of_two(), "spread_workgroup divides by it with a shift");
 
 /// What the trace kernel writes per pixel; mirrored by the VIEW_ constants in
 /// shaders/types.wgsl.

@@ -1,0 +1,119 @@
+//! The order of a dispatch's workgroups over a band (`lib/spread.wgsl`), run
+//! on the device: every workgroup gets a place of its own, and each of the
+//! runs of consecutive workgroups lavapipe deals its threads holds its share
+//! of every strip of the band, whatever the count.
+
+mod support;
+
+use glint_gpu::shaders::ShaderSource;
+use glint_scene::gpu_types::{SPREAD_STRIPS, wgsl_prelude};
+use wgpu::util::DeviceExt;
+
+const PLACES_KERNEL: &str = r#"
+@group(0) @binding(0) var<storage, read_write> places: array<u32>;
+
+@compute @workgroup_size(1)
+fn main(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let place = spread_workgroup(wid, groups);
+    places[wid.y * groups.x + wid.x] = place.y * groups.x + place.x;
+}
+"#;
+
+/// The place in the band, as a row-major workgroup index, of each workgroup
+/// of a dispatch of `groups`, in the order the driver numbers them.
+fn places(groups: [u32; 2]) -> Vec<u32> {
+    let gpu = support::gpu();
+    let device = &gpu.device;
+    let spread = std::fs::read_to_string(ShaderSource::source_dir().join("lib/spread.wgsl")).unwrap();
+    let source = format!("{}{spread}{PLACES_KERNEL}", wgsl_prelude());
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("spread"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("spread"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let count = (groups[0] * groups[1]) as usize;
+    let bytes = (count * 4) as u64;
+    let out = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: &vec![0xffu8; count * 4],
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+    });
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[wgpu::BindGroupEntry { binding: 0, resource: out.as_entire_binding() }],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups(groups[0], groups[1], 1);
+    }
+    encoder.copy_buffer_to_buffer(&out, 0, &readback, 0, bytes);
+    gpu.queue.submit([encoder.finish()]);
+    readback.map_async(wgpu::MapMode::Read, .., |r| r.unwrap());
+    device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    let mapped = readback.get_mapped_range(..).unwrap();
+    mapped.chunks_exact(4).map(|b| u32::from_le_bytes(b.try_into().unwrap())).collect()
+}
+
+/// Dispatch shapes of bands: one workgroup, one row of them, odd counts on
+/// either side of a multiple of the strips, a whole 512×512 image.
+const SHAPES: [[u32; 2]; 8] = [[1, 1], [5, 1], [64, 1], [7, 5], [13, 17], [64, 3], [33, 31], [64, 64]];
+
+#[test]
+fn every_workgroup_has_a_place_of_its_own() {
+    for groups in SHAPES {
+        let mut seen = places(groups);
+        seen.sort_unstable();
+        let all: Vec<u32> = (0..groups[0] * groups[1]).collect();
+        assert_eq!(seen, all, "a dispatch of {groups:?} workgroups");
+    }
+}
+
+/// lavapipe deals a dispatch's workgroups to its threads in runs of
+/// count / threads consecutive ones (the remainder one at a time).
+#[test]
+fn every_threads_run_holds_its_share_of_every_strip() {
+    for groups in SHAPES {
+        let places = places(groups);
+        let count = places.len();
+        let strip_of = |place: u32| {
+            let (length, longer) = (count / SPREAD_STRIPS as usize, count % SPREAD_STRIPS as usize);
+            let place = place as usize;
+            // The first `longer` strips hold one place more.
+            if place < longer * (length + 1) { place / (length + 1) } else { longer + (place - longer * (length + 1)) / length }
+        };
+        for threads in 2..=4 {
+            let run = count / threads;
+            if run < SPREAD_STRIPS as usize {
+                continue;
+            }
+            for (t, chunk) in places[..run * threads].chunks(run).enumerate() {
+                let mut per_strip = vec![0usize; SPREAD_STRIPS as usize];
+                for &place in chunk {
+                    per_strip[strip_of(place)] += 1;
+                }
+                let share = count / SPREAD_STRIPS as usize / threads;
+                assert!(
+                    per_strip.iter().all(|&n| n + 1 >= share && n <= share + 2),
+                    "thread {t} of {threads}, dispatch of {groups:?}: {per_strip:?} places per strip, not about {share}"
+                );
+            }
+        }
+    }
+}
