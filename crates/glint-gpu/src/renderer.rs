@@ -173,7 +173,7 @@ impl Renderer {
             pipelines,
             scene_layout,
             lost,
-            bands: Mutex::new(BandScheduler::new(BATCH_TARGET)),
+            bands: Mutex::new(BandScheduler::before_compile(BATCH_TARGET)),
             max_tile_pixels: None,
         })
     }

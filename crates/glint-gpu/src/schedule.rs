@@ -37,11 +37,17 @@ impl BandScheduler {
         Self { target, pixels: FIRST_BAND_PIXELS, compiling: false }
     }
 
-    /// The bands of the viewer's first image on a new canvas: aimed at
-    /// FIRST_IMAGE_TARGET, the first band, which the kernel's compile delays,
-    /// not learnt from, and so starting larger.
+    /// The bands of a renderer whose kernels have not yet been dispatched:
+    /// aimed at `target`, the first band, which the kernel's compile delays,
+    /// not learnt from, and so starting larger (a first band learnt from
+    /// would shrink to one workgroup of rows and take many bands to regrow).
+    pub const fn before_compile(target: Duration) -> Self {
+        Self { target, pixels: 8 * FIRST_BAND_PIXELS, compiling: true }
+    }
+
+    /// The bands of the viewer's first image on a new canvas.
     pub const fn first_image() -> Self {
-        Self { target: FIRST_IMAGE_TARGET, pixels: 8 * FIRST_BAND_PIXELS, compiling: true }
+        Self::before_compile(FIRST_IMAGE_TARGET)
     }
 
     /// Aims the bands from now on at `target`, starting from what was learnt;
