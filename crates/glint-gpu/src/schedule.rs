@@ -17,8 +17,9 @@ pub const FIRST_IMAGE_TARGET: Duration = BATCH_TARGET;
 
 /// Rows are traced in whole workgroups of this many.
 const TILE_ROWS: u32 = 8;
-/// The size of the first band, before anything has been measured.
-const FIRST_BAND_PIXELS: u32 = 8 * 512;
+/// The size of the first band, which waits for the kernel's compile and so
+/// measures nothing: large, since a band that small would take many to regrow.
+const FIRST_BAND_PIXELS: u32 = 64 * 512;
 
 /// Sizes bands from the time the last one took: towards the target in
 /// proportion, growing at most twofold per band and shrinking at once.
@@ -33,16 +34,12 @@ pub struct BandScheduler {
 }
 
 impl BandScheduler {
-    pub const fn new(target: Duration) -> Self {
-        Self { target, pixels: FIRST_BAND_PIXELS, compiling: false }
-    }
-
     /// The bands of a renderer whose kernels have not yet been dispatched:
     /// aimed at `target`, the first band, which the kernel's compile delays,
     /// not learnt from, and so starting larger (a first band learnt from
     /// would shrink to one workgroup of rows and take many bands to regrow).
     pub const fn before_compile(target: Duration) -> Self {
-        Self { target, pixels: 8 * FIRST_BAND_PIXELS, compiling: true }
+        Self { target, pixels: FIRST_BAND_PIXELS, compiling: true }
     }
 
     /// The bands of the viewer's first image on a new canvas.
@@ -83,9 +80,16 @@ mod tests {
 
     const WIDTH: u32 = 512;
 
+    /// A scheduler past its compile band, which is not learnt from.
+    fn compiled(target: Duration) -> BandScheduler {
+        let mut s = BandScheduler::before_compile(target);
+        s.record(WIDTH, s.rows(WIDTH, 10_000), Duration::from_secs(1));
+        s
+    }
+
     /// Bands of a device that traces `per_row` per row settle near the target.
     fn settle(per_row: Duration, target: Duration) -> u32 {
-        let mut s = BandScheduler::new(target);
+        let mut s = compiled(target);
         for _ in 0..20 {
             let rows = s.rows(WIDTH, 100_000);
             s.record(WIDTH, rows, per_row * rows);
@@ -106,7 +110,7 @@ mod tests {
     fn the_first_image_starts_larger_aims_longer_and_is_retargeted_at_once() {
         let mut s = BandScheduler::first_image();
         let first = s.rows(WIDTH, 10_000);
-        assert_eq!(first, 8 * FIRST_BAND_PIXELS / WIDTH);
+        assert_eq!(first, FIRST_BAND_PIXELS / WIDTH);
         s.record(WIDTH, first, Duration::from_secs(1));
         assert_eq!(s.rows(WIDTH, 10_000), first, "the band that waited for the compile is not learnt from");
         for _ in 0..20 {
@@ -120,7 +124,7 @@ mod tests {
 
     #[test]
     fn growth_is_gentle_and_shrinking_immediate() {
-        let mut s = BandScheduler::new(BATCH_TARGET);
+        let mut s = compiled(BATCH_TARGET);
         let first = s.rows(WIDTH, 10_000);
         s.record(WIDTH, first, Duration::from_micros(1));
         assert_eq!(s.rows(WIDTH, 10_000), 2 * first, "an instant band only doubles the next");
@@ -130,7 +134,7 @@ mod tests {
 
     #[test]
     fn a_band_never_passes_the_rows_left_nor_is_empty() {
-        let s = BandScheduler::new(BATCH_TARGET);
+        let s = BandScheduler::before_compile(BATCH_TARGET);
         assert_eq!(s.rows(WIDTH, 3), 3);
         assert_eq!(s.rows(100_000, 5), 5, "a very wide image still gets one workgroup of rows");
         assert_eq!(s.rows(0, 0), 1);
