@@ -283,3 +283,27 @@ shininess = 8
     }
     assert!(shadowed > 20 && lit > 200 && on_sphere > 100, "shadowed {shadowed}, lit {lit}, on the sphere {on_sphere}");
 }
+
+#[test]
+fn the_last_of_the_most_materials_a_scene_may_have_reaches_the_kernels() {
+    use glint_scene::gpu_types::MAX_MATERIALS;
+    let mut scene = parse(&format!(
+        "{HEADER}\n[ambient]\nintensity = 1\n[material.white]\ncolor = 1\nka = 1\nkd = 0\n\
+         [[object]]\ntype = \"sphere\"\ncenter = [-1.2, 0.5, 0]\nradius = 0.5\nmaterial = \"white\"\n\
+         [[object]]\ntype = \"sphere\"\ncenter = [1.2, 0.5, 0]\nradius = 0.5\nmaterial = \"white\"\n"
+    ));
+    let template = scene.materials[scene.objects[0].material].clone();
+    let shade = |i: usize| glam::Vec3::new(i as f32 / MAX_MATERIALS as f32, 0.5, 1.0 - i as f32 / MAX_MATERIALS as f32);
+    scene.materials = (0..MAX_MATERIALS as usize)
+        .map(|i| glint_scene::Material { name: format!("m{i}"), color: shade(i), ..template.clone() })
+        .collect();
+    let (first, last) = (1, MAX_MATERIALS as usize - 1);
+    scene.objects[0].material = first;
+    scene.objects[1].material = last;
+    let (image, _) = render(&scene);
+    for (center, material) in [(DVec3::new(-1.2, 0.5, 0.0), first), (DVec3::new(1.2, 0.5, 0.0), last)] {
+        let (x, y) = scene.camera.project(scene.width, scene.height, center).unwrap();
+        let expected = shade(material).as_dvec3().to_array();
+        assert_close(image.linear_at(x as u32, y as u32), expected, 1e-3, &format!("material {material}"));
+    }
+}

@@ -4,8 +4,8 @@
 @group(0) @binding(0) var<uniform> uniforms: SceneUniforms;
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
 @group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
-@group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
-// A uniform buffer: see MAX_LIGHTS in gpu_types.rs.
+// Uniform buffers: see MAX_LIGHTS and MAX_MATERIALS in gpu_types.rs.
+@group(0) @binding(3) var<uniform> materials: array<GpuMaterial, MAX_MATERIALS>;
 @group(0) @binding(4) var<uniform> lights: array<GpuLight, MAX_LIGHTS>;
 // Polygon vertices and triangle vertex normals (xyz).
 @group(0) @binding(5) var<storage, read> points: array<vec4<f32>>;

@@ -206,10 +206,9 @@ impl Renderer {
         let device_pixels = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size) / PIXEL_BYTES;
         let accum_pixels =
             (u64::from(width) * u64::from(height)).min(device_pixels).min(self.max_tile_pixels.unwrap_or(u64::MAX)).max(1);
-        let arrays: [(&str, &[u8]); 5] = [
+        let arrays: [(&str, &[u8]); 4] = [
             ("primitives", bytemuck::cast_slice(&scene.prims)),
             ("BVH nodes", bytemuck::cast_slice(&scene.nodes)),
-            ("materials", bytemuck::cast_slice(&scene.materials)),
             ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
             ("BVH grids", bytemuck::cast_slice(&scene.grids)),
         ];
@@ -234,9 +233,8 @@ impl Renderer {
         };
         let prims = storage("prims", arrays[0].1);
         let nodes = storage("nodes", arrays[1].1);
-        let materials = storage("materials", arrays[2].1);
-        let points = storage("points", arrays[3].1);
-        let grids = storage("grids", arrays[4].1);
+        let points = storage("points", arrays[2].1);
+        let grids = storage("grids", arrays[3].1);
         let uniform = |label: &str, contents: &[u8]| {
             self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -245,6 +243,7 @@ impl Renderer {
             })
         };
         let lights = uniform("lights", bytemuck::cast_slice(&scene.lights));
+        let materials = uniform("materials", bytemuck::cast_slice(&scene.materials));
         let uniforms_buffer = uniform("scene uniforms", bytemuck::bytes_of(&uniforms));
         let dispatch = uniform("dispatch params", bytemuck::bytes_of(&DispatchParams::zeroed()));
         let accum = self.device.create_buffer(&wgpu::BufferDescriptor {
@@ -646,7 +645,7 @@ fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         buffer(0, wgpu::BufferBindingType::Uniform),
         buffer(1, read_only),
         buffer(2, read_only),
-        buffer(3, read_only),
+        buffer(3, wgpu::BufferBindingType::Uniform),
         buffer(4, wgpu::BufferBindingType::Uniform),
         buffer(5, read_only),
         buffer(6, read_write),

@@ -117,11 +117,12 @@ shared_constants! {
     /// The distance of a ray that hits nothing, and the depth view's value there.
     MISS: f32 = 3.4e38;
 
-    /// The lights a scene may have on: the kernels read them from a uniform
-    /// buffer of the 64 KiB every device binds, where a software rasteriser
-    /// loads per lane without branches (from a storage buffer each lane's
-    /// load is a branch of its own), which also compiles to less code.
+    /// The lights and the materials a scene may have: the kernels read each
+    /// from a uniform buffer of the 64 KiB every device binds, where a software
+    /// rasteriser loads per lane without branches (from a storage buffer each
+    /// lane's load is a branch of its own), which also compiles to less code.
     MAX_LIGHTS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>()) as u32;
+    MAX_MATERIALS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuMaterial>()) as u32;
 
     /// The trace kernel's stack of pending rays: each level of the deepest
     /// tree leaves at most one sibling waiting.
@@ -522,6 +523,8 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
     if materials.is_empty() {
         materials.push(Zeroable::zeroed());
     }
+    // The kernels bind the whole array (MAX_MATERIALS).
+    materials.resize(MAX_MATERIALS as usize, Zeroable::zeroed());
     let mut lights: Vec<GpuLight> = scene.lights.iter().filter(|l| l.enabled).map(pack_light).collect();
     let light_count = lights.len() as u32;
     // The kernels bind the whole array (MAX_LIGHTS).

@@ -5,19 +5,14 @@
 
 use crate::bvh::Bvh;
 use crate::gpu_bvh::MAX_NODES;
-use crate::gpu_types::{BVH_STACK, MAX_LIGHTS, RAY_STACK};
+use crate::gpu_types::{BVH_STACK, MAX_LIGHTS, MAX_MATERIALS, RAY_STACK};
 use crate::{Scene, Shape};
-
-/// Materials are indexed by the 24 bits above a primitive's kind.
-pub const MAX_MATERIALS: usize = 1 << 24;
 
 /// A scene the kernels cannot be given.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum Invalid {
     #[error("object {object} uses material {material}, but the scene has {count} materials")]
     MaterialIndex { object: usize, material: usize, count: usize },
-    #[error("the scene has {0} materials; the kernels index at most {MAX_MATERIALS}")]
-    TooManyMaterials(usize),
     #[error("object {object}: a polygon needs at least 3 vertices, not {count}")]
     PolygonVertices { object: usize, count: usize },
     #[error("object {object}: a plane's normal must be a unit vector")]
@@ -38,8 +33,8 @@ impl Scene {
         if !(1..RAY_STACK).contains(&self.render.max_depth) {
             return Err(Invalid::MaxDepth(self.render.max_depth));
         }
-        if self.materials.len() > MAX_MATERIALS {
-            return Err(Invalid::TooManyMaterials(self.materials.len()));
+        if self.materials.len() > MAX_MATERIALS as usize {
+            return Err(Invalid::TooMany { what: "materials", count: self.materials.len(), max: MAX_MATERIALS as usize });
         }
         for (material, m) in self.materials.iter().enumerate() {
             if m.checker.is_some_and(|c| !(c.size > 0.0 && c.size.is_finite())) {
@@ -162,6 +157,11 @@ mod tests {
         lit.lights.push(light);
         let too_many = Invalid::TooMany { what: "lights", count: MAX_LIGHTS as usize + 1, max: MAX_LIGHTS as usize };
         assert_eq!(lit.validate(), Err(too_many), "lights count whether on or off");
+        let mut painted = scene(vec![sphere(0)], MAX_MATERIALS as usize);
+        assert_eq!(painted.validate(), Ok(()));
+        painted.materials.push(crate::Material::default());
+        let too_many = Invalid::TooMany { what: "materials", count: MAX_MATERIALS as usize + 1, max: MAX_MATERIALS as usize };
+        assert_eq!(painted.validate(), Err(too_many));
         let message = Invalid::MaterialIndex { object: 1, material: 2, count: 2 }.to_string();
         assert_eq!(message, "object 1 uses material 2, but the scene has 2 materials");
     }
