@@ -29,12 +29,14 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
     var top = 0u;
     var pending = PendingRay(eye, vec3<f32>(1.0), 1u, RAY_EYE, NO_RAY);
     var color = vec3<f32>(0.0);
-    // The surface `pending` hit, while it is shaded: its distance, point and
-    // material, the id `note_ray` gave the ray, the local colour so far and
-    // the light whose shadow ray is traced next (light_count: none left).
+    // The surface `pending` hit, while it is shaded: its distance, point,
+    // material and colour there (see `shaded_material`), the id `note_ray`
+    // gave the ray, the local colour so far and the light whose shadow ray is
+    // traced next (light_count: none left).
     var t_hit: f32;
     var s: Surface;
-    var m: GpuMaterial;
+    var material: u32;
+    var color_at_hit: vec3<f32>;
     var id: u32;
     var local: vec3<f32>;
     var light: LitLight;
@@ -53,7 +55,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         var shading = true;
         var first_light = 0u;
         if shadow_query {
-            local += light_term(light, s, m, -pending.ray.dir, hit);
+            local += light_term(light, s, shaded_material(material, color_at_hit), -pending.ray.dir, hit);
             first_light = light.index + 1u;
         } else {
             deepest = max(deepest, pending.depth);
@@ -68,7 +70,9 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
                 let p = prims[hit.prim];
                 t_hit = hit.t;
                 s = surface_at(p, pending.ray, hit.t);
-                m = material_at(p, s.point);
+                let m = material_at(p, s.point);
+                material = prim_material(p);
+                color_at_hit = m.color;
                 note_hit(s, hit.prim);
                 local = ambient_term(m);
             }
@@ -87,7 +91,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             continue;
         }
         if shading {
-            push_secondary_rays(pending, t_hit, s, m, id, local, &color, &stack, &top);
+            push_secondary_rays(pending, t_hit, s, shaded_material(material, color_at_hit), id, local, &color, &stack, &top);
         }
         // Without secondary rays the tree is the eye ray alone, and the
         // kernel compiles without the stack (a sixth less to compile).
@@ -101,6 +105,16 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         shadow_query = false;
     }
     return color;
+}
+
+// The material being shaded, with its colour at the hit (a checker's tile).
+// The loop carries its index and that colour, not the whole material: a
+// variable the loop carries is kept in memory by a kernel compiled without
+// optimisation, and read and written whole each time round.
+fn shaded_material(index: u32, color: vec3<f32>) -> GpuMaterial {
+    var m = materials[index];
+    m.color = color;
+    return m;
 }
 
 // Where the ray stack's entry `top` is kept. Without transmitters
