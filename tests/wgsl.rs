@@ -280,7 +280,7 @@ fn shared_constants_come_from_the_host() {
     for (name, host) in [
         ("PRIM_POLYGON", f64::from(g::PRIM_POLYGON)),
         ("VIEW_HEATMAP", f64::from(g::VIEW_HEATMAP)),
-        ("RAY_STACK", f64::from(glint_scene::MAX_DEPTH_LIMIT + 1)),
+        ("MAX_DEPTH", f64::from(glint_scene::MAX_DEPTH_LIMIT)),
         ("BVH_STACK", glint_scene::bvh::MAX_DEPTH as f64),
         ("LEAF", f64::from(g::LEAF)),
         ("MISS", f64::from(g::MISS)),

@@ -25,7 +25,9 @@ struct PendingRay {
 var<private> deepest: u32;
 
 fn trace_pixel(eye: Ray) -> vec3<f32> {
-    var stack: array<PendingRay, RAY_STACK>;
+    // Rays at depth d < max_depth push at most two and the next is popped at
+    // once, so at most one sibling per level waits: max_depth entries.
+    var stack: array<PendingRay, MAX_DEPTH>;
     var top = 0u;
     var pending = PendingRay(eye, vec3<f32>(1.0), 1u, RAY_EYE, NO_RAY);
     var color = vec3<f32>(0.0);
@@ -136,7 +138,7 @@ fn push_secondary_rays(
     id: u32,
     local: vec3<f32>,
     color: ptr<function, vec3<f32>>,
-    stack: ptr<function, array<PendingRay, RAY_STACK>>,
+    stack: ptr<function, array<PendingRay, MAX_DEPTH>>,
     top: ptr<function, u32>,
 ) {
     let ray = pending.ray;

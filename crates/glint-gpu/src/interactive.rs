@@ -184,7 +184,7 @@ impl Renderer {
         debug_assert_eq!((uniforms.width, uniforms.height, uniforms.bvh_root), (scene.width, scene.height, scene.bvh_root));
         if !scene.specialization.covers_uniforms(uniforms) {
             return Err(GpuError::Runtime(format!(
-                "the scene was uploaded for its own settings ({}): tinted shadows or depth cueing need it uploaded editable",
+                "the scene was uploaded for its own settings ({}): tinted shadows, depth cueing or a deeper ray tree need it uploaded editable",
                 scene.specialization
             )));
         }

@@ -6,7 +6,6 @@ use glam::Vec3;
 
 use crate::bvh::MAX_DEPTH as BVH_MAX_DEPTH;
 use crate::gpu_bvh::{GpuBvh, GpuGrid, GpuNode};
-use crate::scene::MAX_DEPTH_LIMIT;
 use crate::shape::{plane_axes, polygon_normal};
 use crate::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
@@ -124,9 +123,6 @@ shared_constants! {
     MAX_LIGHTS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>()) as u32;
     MAX_MATERIALS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuMaterial>()) as u32;
 
-    /// The trace kernel's stack of pending rays: each level of the deepest
-    /// tree leaves at most one sibling waiting.
-    RAY_STACK: u32 = MAX_DEPTH_LIMIT + 1;
     /// BVH traversal's stack: the builder bounds the tree's depth by it.
     BVH_STACK: u32 = BVH_MAX_DEPTH as u32;
     /// In a reference to a BVH record: a leaf. In `GpuNode::children`: the first child is a leaf.

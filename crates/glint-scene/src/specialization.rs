@@ -9,6 +9,7 @@
 //! of the others (each becomes a `const` in the kernel's prelude, whose dead
 //! branches the driver's compiler removes before it generates code).
 
+use crate::MAX_DEPTH_LIMIT;
 use crate::gpu_types::{
     GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
     MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
@@ -46,6 +47,10 @@ pub struct Specialization {
     /// The primary kernel traces the eye rays of 2×2 blocks of pixels as ray
     /// packets: faster per ray, slower to compile (see `for_eye_rays`).
     pub packets: bool,
+    /// The deepest ray tree the kernel traces (`uniforms.max_depth` may be no
+    /// more): its stack of pending rays holds that many, each of them zeroed
+    /// when a pixel starts, so a shallower tree compiles less.
+    pub max_depth: u32,
 }
 
 /// Eye rays from which a command's primary kernel traces packets: fewer trace
@@ -72,6 +77,7 @@ impl Specialization {
         depth_cue: true,
         view: None,
         packets: true,
+        max_depth: MAX_DEPTH_LIMIT,
     };
 
     /// What `scene` needs: its primitives' kinds, the terms of the materials
@@ -99,6 +105,7 @@ impl Specialization {
             depth_cue: uniforms.flags & FLAG_DEPTH_CUE != 0,
             view: None,
             packets: true,
+            max_depth: uniforms.max_depth.max(1),
         };
         for p in &scene.prims {
             match p.kind() {
@@ -162,7 +169,9 @@ impl Specialization {
     /// Whether a kernel of this specialisation renders with `uniforms`' settings.
     pub fn covers_uniforms(self, uniforms: &SceneUniforms) -> bool {
         let needs = |on: bool, flag: u32| on || uniforms.flags & flag == 0;
-        needs(self.tinted_shadows, FLAG_TINTED_SHADOWS) && needs(self.depth_cue, FLAG_DEPTH_CUE)
+        needs(self.tinted_shadows, FLAG_TINTED_SHADOWS)
+            && needs(self.depth_cue, FLAG_DEPTH_CUE)
+            && uniforms.max_depth <= self.max_depth
     }
 
     fn flags(self) -> [(&'static str, bool); 13] {
@@ -188,6 +197,7 @@ impl Specialization {
         let mut wgsl: String = self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect();
         wgsl.push_str(&format!("const ONLY_VIEW: u32 = {}u;\n", self.view.map_or(ANY_VIEW, |view| view as u32)));
         wgsl.push_str(&format!("const PACKETS: bool = {};\n", self.packets));
+        wgsl.push_str(&format!("const MAX_DEPTH: u32 = {}u;\n", self.max_depth));
         wgsl
     }
 }
@@ -282,6 +292,7 @@ mod tests {
             depth_cue: false,
             view: None,
             packets: true,
+            max_depth: 1,
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones, no refraction");
@@ -289,7 +300,7 @@ mod tests {
         every.prims[2].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
-        let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, ..SceneUniforms::zeroed() };
+        let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, max_depth: MAX_DEPTH_LIMIT, ..SceneUniforms::zeroed() };
         assert_eq!(Specialization::of(&every, &uniforms), Specialization::ALL);
     }
 
@@ -358,6 +369,18 @@ mod tests {
             assert!(Specialization::of(&glass, &uniforms).covers_uniforms(&uniforms), "{flag}");
         }
         assert!(opaque.covers_uniforms(&SceneUniforms::zeroed()));
+    }
+
+    #[test]
+    fn the_ray_stack_holds_the_trees_of_the_scenes_depth_and_no_deeper() {
+        let mirror = scene(&[PRIM_SPHERE], 1.0);
+        let at = |max_depth| SceneUniforms { max_depth, ..SceneUniforms::zeroed() };
+        let five = Specialization::of(&mirror, &at(5));
+        assert_eq!(five.max_depth, 5);
+        assert!(five.wgsl().contains("const MAX_DEPTH: u32 = 5u;"));
+        assert!(five.covers_uniforms(&at(5)) && five.covers_uniforms(&at(2)));
+        assert!(!five.covers_uniforms(&at(6)), "a deeper tree overruns the stack");
+        assert!(five.editable().covers_uniforms(&at(MAX_DEPTH_LIMIT)));
     }
 
     #[test]

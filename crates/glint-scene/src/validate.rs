@@ -5,8 +5,8 @@
 
 use crate::bvh::Bvh;
 use crate::gpu_bvh::MAX_NODES;
-use crate::gpu_types::{BVH_STACK, MAX_LIGHTS, MAX_MATERIALS, RAY_STACK};
-use crate::{Scene, Shape};
+use crate::gpu_types::{BVH_STACK, MAX_LIGHTS, MAX_MATERIALS};
+use crate::{Scene, Shape, MAX_DEPTH_LIMIT};
 
 /// A scene the kernels cannot be given.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -21,7 +21,7 @@ pub enum Invalid {
     CheckerSize { material: usize },
     #[error("the scene has {count} {what}; the kernels index at most {max}")]
     TooMany { what: &'static str, count: usize, max: usize },
-    #[error("a maximum ray depth of {0} does not fit the kernel's ray stack (1 to {max})", max = RAY_STACK - 1)]
+    #[error("a maximum ray depth of {0} does not fit the kernel's ray stack (1 to {MAX_DEPTH_LIMIT})")]
     MaxDepth(u32),
     #[error("the BVH is {0} levels deep; traversal's stack holds {BVH_STACK}")]
     TooDeep(usize),
@@ -30,7 +30,7 @@ pub enum Invalid {
 impl Scene {
     /// Checks every invariant of the scene itself that the kernels assume.
     pub fn validate(&self) -> Result<(), Invalid> {
-        if !(1..RAY_STACK).contains(&self.render.max_depth) {
+        if !(1..=MAX_DEPTH_LIMIT).contains(&self.render.max_depth) {
             return Err(Invalid::MaxDepth(self.render.max_depth));
         }
         if self.materials.len() > MAX_MATERIALS as usize {
@@ -139,7 +139,7 @@ mod tests {
         let mut checkered = scene(vec![sphere(0)], 2);
         checkered.materials[1].checker = Some(crate::Checker { color: Vec3::ONE, size: 0.0 });
         assert_eq!(checkered.validate(), Err(Invalid::CheckerSize { material: 1 }));
-        for depth in [0, RAY_STACK] {
+        for depth in [0, MAX_DEPTH_LIMIT + 1] {
             let mut s = scene(vec![sphere(0)], 1);
             s.render.max_depth = depth;
             assert_eq!(s.validate(), Err(Invalid::MaxDepth(depth)));

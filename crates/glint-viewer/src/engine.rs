@@ -69,10 +69,10 @@ impl Canvas {
 
     /// Makes the kernels take `materials`, `lights` and `uniforms` before they
     /// are written: an edit beyond the scene's own terms (a matte scene's first
-    /// mirror, a light that fades, depth cueing turned on) switches to the
-    /// kernels with every term, once. Until
-    /// then the kernels carry only what the scene uses, which lavapipe
-    /// compiles in about two thirds of the time, so the first image comes sooner.
+    /// mirror, a light that fades, depth cueing turned on, a deeper ray tree)
+    /// switches to the kernels with every term, once. Until then the kernels
+    /// carry only what the scene uses, which lavapipe compiles in about two
+    /// thirds of the time, so the first image comes sooner.
     pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight], uniforms: &SceneUniforms) -> Result<(), GpuError> {
         let specialization = &mut self.prepared.buffers.specialization;
         if !specialization.covers(materials) || !specialization.covers_lights(lights) || !specialization.covers_uniforms(uniforms) {

@@ -231,6 +231,21 @@ fn depth_cueing_turned_on_in_place_needs_an_editable_upload() {
     refused_until_editable(buffers, "depth cueing", &cued, |b| renderer().write_uniforms(b, &uniforms));
 }
 
+/// A scene's kernels hold the ray trees of its own maximum depth; a deeper
+/// one in place is refused unless the scene was uploaded editable, and then
+/// it renders as a fresh upload.
+#[test]
+fn a_deeper_ray_tree_in_place_needs_an_editable_upload() {
+    let mut shallow = scene();
+    shallow.render.max_depth = 2;
+    let mut deep = shallow.clone();
+    deep.render.max_depth = 6;
+    let buffers = upload(&shallow);
+    assert_eq!(buffers.specialization.max_depth, 2);
+    let uniforms = gpu_types::scene_uniforms(&deep, deep.width, deep.height, deep.lights.iter().filter(|l| l.enabled).count() as u32, buffers.bvh_root());
+    refused_until_editable(buffers, "deeper ray tree", &deep, |b| renderer().write_uniforms(b, &uniforms));
+}
+
 #[test]
 fn picking_finds_each_pixel_s_object_and_leaves_the_image_alone() {
     let scene = scene();
