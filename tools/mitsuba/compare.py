@@ -95,11 +95,25 @@ def mitsuba_run(nff, size, mode, integrator, frames, work):
     command = [sys.executable, __file__, "--worker", nff, "--size", str(size), "--mode", mode,
                "--integrator", integrator, "--frames", str(frames), "--work", work]
     start = time.perf_counter()
-    out = subprocess.run(command, check=True, env=env, capture_output=True, text=True).stdout
+    run = subprocess.run(command, env=env, capture_output=True, text=True)
     wall = time.perf_counter() - start
-    report = json.loads(out.splitlines()[-1])
+    if run.returncode != 0:
+        errors = [line for line in run.stderr.splitlines() if line.strip() and not line.startswith(" ")]
+        sys.exit(f"Mitsuba ({integrator}, {mode}) failed on {nff}: {errors[-1] if errors else run.returncode}")
+    report = json.loads(run.stdout.splitlines()[-1])
     report["wall"] = wall
     return report
+
+
+def check_llvm():
+    """Dr.Jit takes the first libLLVM it finds; with one older than 16 (Debian
+    12's lavapipe brings libLLVM 15) Mitsuba's kernels can fail to compile."""
+    probe = "import mitsuba as mi; mi.set_variant('llvm_ad_rgb'); import drjit as dr; print(dr.detail.llvm_version()[0])"
+    run = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit(f"Mitsuba's llvm variant does not load: {run.stderr.strip().splitlines()[-1] if run.stderr.strip() else run.returncode}")
+    if int(run.stdout.split()[-1]) < 16:
+        sys.exit(f"Dr.Jit found libLLVM {run.stdout.split()[-1]}; Mitsuba's llvm variant needs 16 or later (Debian 12: apt-get install libllvm19)")
 
 
 def worker(args):
@@ -150,6 +164,7 @@ def main():
     if args.worker:
         return worker(args)
 
+    check_llvm()
     work = tempfile.mkdtemp(prefix="glint-vs-mitsuba-")
     scenes = args.scenes or CLASSIC + ["bunny"]
     files = []
