@@ -123,9 +123,8 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
                 let t_left = slab_entry((c.left_near - ray.origin) * inv_dir, (c.left_far - ray.origin) * inv_dir, t_max);
                 let t_right = slab_entry((c.right_near - ray.origin) * inv_dir, (c.right_far - ray.origin) * inv_dir, t_max);
                 index = descend(node, t_left, t_right, &top);
-                if index != NEEDS_POP {
-                    grid = entered_grid(c, t_left <= t_right, near_byte);
-                }
+                // Unused when the walk pops (pop restores the grid it needs).
+                grid = entered_grid(c, t_left <= t_right, near_byte);
                 if (index & LEAF) != 0u {
                     break;
                 }
@@ -147,9 +146,6 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
 // distances t_left and t_right (MISS: not at all): the nearer child entered,
 // the farther pushed with its distance when both are, NEEDS_POP when neither.
 fn descend(node: GpuNode, t_left: f32, t_right: f32, top: ptr<function, u32>) -> u32 {
-    if min(t_left, t_right) == MISS {
-        return NEEDS_POP;
-    }
     let first = node.children & ~(LEAF | RIGHT_LEAF);
     let left = first | (node.children & LEAF);
     let right = (first + 1u) | ((node.children << 1u) & LEAF);
@@ -159,7 +155,7 @@ fn descend(node: GpuNode, t_left: f32, t_right: f32, top: ptr<function, u32>) ->
         stack_t[*top] = max(t_left, t_right);
         *top += 1u;
     }
-    return select(right, left, near_first);
+    return select(select(right, left, near_first), NEEDS_POP, min(t_left, t_right) == MISS);
 }
 
 // Tests primitives first .. first + count (a leaf's, or the infinite planes)

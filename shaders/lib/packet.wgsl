@@ -138,9 +138,8 @@ fn traverse_packet(p: Packet) -> PacketHit {
                 let t_left = packet_entry(p.bounds, c.left_near, c.left_far, t_bound);
                 let t_right = packet_entry(p.bounds, c.right_near, c.right_far, t_bound);
                 index = descend(node, t_left, t_right, &top);
-                if index != NEEDS_POP {
-                    grid = entered_grid(c, t_left <= t_right, p.bounds.near_byte);
-                }
+                // Unused when the walk pops (pop restores the grid it needs).
+                grid = entered_grid(c, t_left <= t_right, p.bounds.near_byte);
                 if (index & LEAF) != 0u {
                     break;
                 }
