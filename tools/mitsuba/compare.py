@@ -98,11 +98,16 @@ def mitsuba_run(nff, size, mode, integrator, frames, work):
     run = subprocess.run(command, env=env, capture_output=True, text=True)
     wall = time.perf_counter() - start
     if run.returncode != 0:
-        errors = [line for line in run.stderr.splitlines() if line.strip() and not line.startswith(" ")]
-        sys.exit(f"Mitsuba ({integrator}, {mode}) failed on {nff}: {errors[-1] if errors else run.returncode}")
+        sys.exit(f"Mitsuba ({integrator}, {mode}) failed on {nff}: {last_error(run)}")
     report = json.loads(run.stdout.splitlines()[-1])
     report["wall"] = wall
     return report
+
+
+def last_error(run):
+    """The last line a failed process wrote that is not a dump's indented detail."""
+    errors = [line for line in run.stderr.splitlines() if line.strip() and not line.startswith(" ")]
+    return errors[-1] if errors else f"exit code {run.returncode}"
 
 
 def check_llvm():
@@ -111,7 +116,7 @@ def check_llvm():
     probe = "import mitsuba as mi; mi.set_variant('llvm_ad_rgb'); import drjit as dr; print(dr.detail.llvm_version()[0])"
     run = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
     if run.returncode != 0:
-        sys.exit(f"Mitsuba's llvm variant does not load: {run.stderr.strip().splitlines()[-1] if run.stderr.strip() else run.returncode}")
+        sys.exit(f"Mitsuba's llvm variant does not load: {last_error(run)}")
     if int(run.stdout.split()[-1]) < 16:
         sys.exit(f"Dr.Jit found libLLVM {run.stdout.split()[-1]}; Mitsuba's llvm variant needs 16 or later (Debian 12: apt-get install libllvm19)")
 

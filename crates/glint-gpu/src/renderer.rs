@@ -145,7 +145,8 @@ pub struct SceneBuffers {
     pub(crate) scene_bind: wgpu::BindGroup,
     pub(crate) materials: wgpu::Buffer,
     pub(crate) lights: wgpu::Buffer,
-    /// Bytes of geometry, BVH, materials and lights on the device.
+    /// Bytes of geometry and BVH on the device, what grows with the scene (the
+    /// lights' and materials' uniform buffers are a fixed 64 KiB each).
     pub scene_bytes: u64,
     /// What the kernels that render it are compiled for: the primitive kinds,
     /// the shading terms, and the view when a command renders one alone.
