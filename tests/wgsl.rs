@@ -5,7 +5,7 @@ use std::mem::{offset_of, size_of};
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glint_gpu::shaders::{imports, Kernel, ShaderSource, SOURCES};
+use glint_gpu::shaders::{imports, Kernel, SceneArrays, ShaderSource, SCENE_ARRAYS_IMPORT, SOURCES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
@@ -13,7 +13,7 @@ use glint_scene::gpu_types::{
 use glint_scene::specialization::Specialization;
 
 fn module(kernel: Kernel) -> naga::Module {
-    ShaderSource::Embedded.compose(kernel, Specialization::ALL).unwrap().validate().unwrap()
+    ShaderSource::Embedded.compose(kernel, Specialization::ALL, SceneArrays::Buffers).unwrap().validate().unwrap()
 }
 
 fn trace_module() -> naga::Module {
@@ -21,10 +21,12 @@ fn trace_module() -> naga::Module {
 }
 
 #[test]
-fn every_kernel_validates() {
+fn every_kernel_validates_reading_buffers_and_textures() {
     for kernel in Kernel::ALL {
-        if let Err(e) = ShaderSource::Embedded.compose(kernel, Specialization::ALL).unwrap().validate() {
-            panic!("{e}");
+        for arrays in SceneArrays::ALL {
+            if let Err(e) = ShaderSource::Embedded.compose(kernel, Specialization::ALL, arrays).unwrap().validate() {
+                panic!("{kernel:?} reading {arrays:?}: {e}");
+            }
         }
     }
 }
@@ -34,7 +36,7 @@ fn every_kernel_validates() {
 #[test]
 fn every_specialisation_validates() {
     for kernel in Kernel::ALL {
-        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL).unwrap();
+        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, SceneArrays::Buffers).unwrap();
         let intersects = composed.files.iter().any(|(name, _)| name == "lib/primitive.wgsl");
         assert_eq!(kernel.is_specialised(), intersects, "{kernel:?}");
         if !intersects {
@@ -57,7 +59,7 @@ fn every_specialisation_validates() {
         };
         let single_rays = views.map(|s| Specialization { packets: false, ..s });
         for specialization in kinds.chain(views).chain(single_rays).chain([plain]) {
-            if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization).unwrap().validate() {
+            if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization, SceneArrays::Buffers).unwrap().validate() {
                 panic!("{kernel:?} for {specialization}: {e}");
             }
         }
@@ -121,7 +123,8 @@ fn every_shader_file_is_embedded_and_part_of_a_kernel() {
     assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
-        .flat_map(|&k| ShaderSource::Embedded.compose(k, Specialization::ALL).unwrap().files.into_iter().map(|(name, _)| name))
+        .flat_map(|&k| SceneArrays::ALL.map(|arrays| ShaderSource::Embedded.compose(k, Specialization::ALL, arrays).unwrap()))
+        .flat_map(|composed| composed.files.into_iter().map(|(name, _)| name))
         .collect();
     for name in SOURCES {
         assert!(used.contains(*name), "shaders/{name} is in no kernel");
@@ -149,12 +152,25 @@ fn declarations(source: &str) -> Vec<String> {
 
 /// Imports are stated, not inherited, and none is idle: a file uses a name
 /// declared in another file only if it imports that file, and it uses
-/// something of every file it imports. The primary kernel carries no ray tree.
+/// something of every file it imports. The import `scene_arrays` stands for
+/// either file of the scene's arrays, which declare the same functions. The
+/// primary kernel carries no ray tree.
 #[test]
 fn imports_are_exactly_what_each_file_uses() {
     let read = |name: &str| std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
-    let declared: BTreeMap<String, Vec<String>> =
-        SOURCES.iter().filter(|n| n.starts_with("lib/")).map(|n| (n.to_string(), declarations(&read(n)))).collect();
+    let is_scene_arrays = |name: &str| SceneArrays::ALL.iter().any(|a| a.file() == name);
+    let functions = |arrays: SceneArrays| -> Vec<String> {
+        let source = read(arrays.file());
+        declarations(&source).into_iter().filter(|n| source.contains(&format!("fn {n}("))).collect()
+    };
+    let [buffers, textures] = SceneArrays::ALL.map(|arrays| functions(arrays).into_iter().filter(|n| n != "texel_of").collect::<Vec<_>>());
+    assert_eq!(buffers, textures, "the two files of the scene's arrays declare different functions");
+    let mut declared: BTreeMap<String, Vec<String>> = SOURCES
+        .iter()
+        .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n))
+        .map(|n| (n.to_string(), declarations(&read(n))))
+        .collect();
+    declared.insert(SCENE_ARRAYS_IMPORT.to_string(), buffers);
     let words = |source: &str| -> BTreeSet<String> {
         let code: String = source.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
         code.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect()
@@ -163,14 +179,14 @@ fn imports_are_exactly_what_each_file_uses() {
         let source = read(name);
         let (used, imported) = (words(&source), imports(&source));
         for (file, names) in &declared {
-            if file == name {
+            if file == name || (file == SCENE_ARRAYS_IMPORT && is_scene_arrays(name)) {
                 continue;
             }
             let uses = names.iter().any(|n| used.contains(n));
             assert_eq!(uses, imported.contains(file), "shaders/{name}: {} {file}", if uses { "uses but does not import" } else { "imports but does not use" });
         }
     }
-    let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL).unwrap();
+    let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL, SceneArrays::Buffers).unwrap();
     assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
     assert!(!primary.source.contains("fn diffuse_only"), "the primary kernel carries shadow rays");
 }
@@ -187,11 +203,11 @@ fn errors_name_the_file_and_line() {
     let broken = std::fs::read_to_string(&sphere).unwrap().replacen("let b =", "let b = undefined_name +", 1);
     std::fs::write(&sphere, &broken).unwrap();
     let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL).unwrap().validate().unwrap_err().to_string();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, SceneArrays::Buffers).unwrap().validate().unwrap_err().to_string();
     assert!(err.contains(&format!("shaders/lib/sphere.wgsl:{line}")), "{err}");
 
     std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL).unwrap_err().to_string();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, SceneArrays::Buffers).unwrap_err().to_string();
     assert!(err.contains("lib/nowhere.wgsl"), "{err}");
 }
 

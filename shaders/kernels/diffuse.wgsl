@@ -2,7 +2,7 @@
 // kernel apart from the primary one because its shadow rays are a second BVH
 // traversal: compiled into the primary kernel it more than doubled the
 // software rasteriser's compile of every data view (depth, normal, id…).
-// import: bindings bvh camera checker diffuse_view dispatch primitive
+// import: bvh camera checker diffuse_view dispatch primitive scene_arrays
 
 @compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)
 fn diffuse_main(
@@ -18,7 +18,7 @@ fn diffuse_main(
         count_ray(select(STAT_EYE_HIT, STAT_EYE_MISS, hit.t == MISS));
         var color = vec3<f32>(0.0);
         if hit.t != MISS {
-            let p = prims[hit.prim];
+            let p = prim_at(hit.prim);
             let s = surface_at(p, eye, hit.t);
             color = diffuse_only(s, material_at(p, s.point));
         }

@@ -5,7 +5,7 @@
 // picking run faster and compile sooner. Specialised with PACKETS, each
 // invocation traces the eye rays of a 2×2 block of pixels as one packet
 // (packet.wgsl), except for the heat map, which counts each ray's own visits.
-// import: bindings bvh camera checker dispatch packet primitive types
+// import: bvh camera checker dispatch packet primitive scene_arrays types
 
 // What `view` shows of the eye ray `eye`'s closest hit: primitive `prim` at
 // distance `t`, or MISS.
@@ -17,7 +17,7 @@ fn primary_view(eye: Ray, t: f32, prim: u32) -> vec3<f32> {
             default: { return vec3<f32>(0.0); }
         }
     }
-    let p = prims[prim];
+    let p = prim_at(prim);
     switch dispatch_view() {
         case VIEW_DEPTH: { return vec3<f32>(t); }
         case VIEW_ALBEDO: { return material_at(p, eye.origin + t * eye.dir).color; }

@@ -1,7 +1,7 @@
 // The probe kernel: one pixel's ray tree, traced by the same code as the
 // trace kernel (lib/ray_tree.wgsl, lib/shade.wgsl) and recorded ray by ray
 // with every term it adds, for `glint probe` and the viewer's inspector.
-// import: bindings bvh camera primitive ray_tree sample types
+// import: bindings bvh camera primitive ray_tree sample scene_arrays types
 
 // One ray of the tree. Eye, reflected and refracted rays hold what they hit
 // and the local terms there; a shadow ray holds its light's terms.
@@ -94,8 +94,8 @@ fn note_hit(s: Surface, prim: u32) {
     probe.rays[current].point = s.point;
     probe.rays[current].geometric = s.geometric;
     probe.rays[current].shading = s.shading;
-    probe.rays[current].object = prims[prim].object;
-    probe.rays[current].material = prim_material(prims[prim]);
+    probe.rays[current].object = prim_at(prim).object;
+    probe.rays[current].material = prim_material(prim_at(prim));
     probe.rays[current].flags |= select(0u, PROBE_BACKFACE, s.backface);
 }
 
@@ -130,7 +130,7 @@ fn note_light(light: u32, point: vec3<f32>, dir: vec3<f32>, distance: f32, n_dot
     r.light = light;
     r.cue_scale = 1.0;
     r.eta = 1.0;
-    r.blocker = select(NO_RAY, prims[shadow.prim].object, shadow.t != MISS);
+    r.blocker = select(NO_RAY, prim_at(shadow.prim).object, shadow.t != MISS);
     probe.rays[i] = r;
 }
 

@@ -1,6 +1,6 @@
 // BVH traversal with a private stack, nearest child first. The host builder
 // guarantees the tree depth fits BVH_STACK.
-// import: bindings primitive ray_frame types
+// import: bindings primitive ray_frame scene_arrays types
 
 // A lane whose ray missed both children waits for the leaf phase to pop, so the
 // descent loop only descends (its body stays small and lanes stay in step).
@@ -43,7 +43,7 @@ struct Grid {
 }
 
 fn stored_grid(index: u32) -> Grid {
-    let g = grids[index];
+    let g = grid_at(index);
     return Grid(g.origin, vec3<u32>(g.exponents, g.exponents >> 8u, g.exponents >> 16u) & vec3<u32>(0xffu));
 }
 
@@ -118,7 +118,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
         if (index & LEAF) == 0u {
             loop {
                 hit.nodes++;
-                let node = nodes[index];
+                let node = node_at(index);
                 let c = child_corners(grid, node.quantized, near_byte);
                 let t_left = slab_entry((c.left_near - ray.origin) * inv_dir, (c.left_far - ray.origin) * inv_dir, t_max);
                 let t_right = slab_entry((c.right_near - ray.origin) * inv_dir, (c.right_far - ray.origin) * inv_dir, t_max);
@@ -132,7 +132,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
         }
         if index != NEEDS_POP {
             hit.nodes++;
-            let leaf = nodes[index & ~LEAF].quantized;
+            let leaf = node_at(index & ~LEAF).quantized;
             if test_prims(leaf.x, leaf.y, ray, frame, t_min, &t_max, &hit, any_hit, tinted) {
                 return hit;
             }
@@ -182,14 +182,14 @@ fn test_prims(
         if !any_hit {
             // Equal distances (coincident surfaces) go to the lower object
             // id, so the winner does not depend on the order of visits.
-            if t < *t_max || (t == *t_max && (*hit).t != MISS && prims[i].object < prims[(*hit).prim].object) {
+            if t < *t_max || (t == *t_max && (*hit).t != MISS && prim_at(i).object < prim_at((*hit).prim).object) {
                 *t_max = t;
                 (*hit).t = t;
                 (*hit).prim = i;
             }
             continue;
         }
-        let m = materials[prim_material(prims[i])];
+        let m = materials[prim_material(prim_at(i))];
         if tinted && any(m.transmit > vec3<f32>(0.0)) {
             (*hit).transmittance *= m.transmit;
         } else {

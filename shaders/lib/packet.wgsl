@@ -8,7 +8,7 @@
 // rays. The packet visits every node one of its rays enters, and each ray gets
 // exactly the hit `traverse` gives it alone: the same tests in the same
 // arithmetic (triangle_intersect4 and the like), the same tie-break.
-// import: bindings bvh cone plane polygon ray_frame sphere triangle types
+// import: bindings bvh cone plane polygon ray_frame scene_arrays sphere triangle types
 
 struct Packet {
     rays: Rays4,
@@ -71,15 +71,15 @@ fn packet_entry(b: PacketBounds, near: vec3<f32>, far: vec3<f32>, t_max: f32) ->
 fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
     let bound = bitcast<vec4<f32>>(bitcast<vec4<u32>>(hit.t) + vec4<u32>(1u));
     var t = vec4<f32>(MISS);
-    let kind = prim_kind(prims[i]);
+    let kind = prim_kind(prim_at(i));
     let only_triangles = !(HAS_SPHERES || HAS_POLYGONS || HAS_CONES || HAS_PLANES);
     let only_polygons = !(HAS_SPHERES || HAS_TRIANGLES || HAS_CONES || HAS_PLANES);
     if only_triangles || (HAS_TRIANGLES && kind == PRIM_TRIANGLE) {
-        t = triangle_intersect4(prims[i], p.frame, vec4<f32>(0.0), bound);
+        t = triangle_intersect4(prim_at(i), p.frame, vec4<f32>(0.0), bound);
     } else if only_polygons || (HAS_POLYGONS && kind == PRIM_POLYGON) {
-        t = polygon_intersect4(prims[i], p.rays, p.frame, vec4<f32>(0.0), bound);
+        t = polygon_intersect4(prim_at(i), p.rays, p.frame, vec4<f32>(0.0), bound);
     } else if HAS_PLANES && kind == PRIM_PLANE {
-        t = plane_intersect4(prims[i], p.rays, vec4<f32>(0.0), bound);
+        t = plane_intersect4(prim_at(i), p.rays, vec4<f32>(0.0), bound);
     } else {
         // Spheres and cones one ray at a time (scenes of them trace fast
         // alone), in a loop whose count the compiler does not know, so that
@@ -90,9 +90,9 @@ fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
             left &= left - 1u;
             let ray = ray_of(p.rays, k);
             if HAS_SPHERES && kind == PRIM_SPHERE {
-                t[k] = sphere_intersect(prims[i], ray, 0.0, bound[k]);
+                t[k] = sphere_intersect(prim_at(i), ray, 0.0, bound[k]);
             } else if HAS_CONES {
-                t[k] = cone_intersect(prims[i], ray, 0.0, bound[k]);
+                t[k] = cone_intersect(prim_at(i), ray, 0.0, bound[k]);
             }
         }
     }
@@ -102,7 +102,7 @@ fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
     if !any(closer | tie) {
         return hit;
     }
-    let object = vec4<u32>(prims[i].object);
+    let object = vec4<u32>(prim_at(i).object);
     let take = closer | (tie & (object < hit.object));
     return PacketHit(select(hit.t, t, take), select(hit.prim, vec4<u32>(i), take), select(hit.object, object, take));
 }
@@ -133,7 +133,7 @@ fn traverse_packet(p: Packet) -> PacketHit {
     while index != NO_NODE {
         if (index & LEAF) == 0u {
             loop {
-                let node = nodes[index];
+                let node = node_at(index);
                 let c = child_corners(grid, node.quantized, p.bounds.near_byte);
                 let t_left = packet_entry(p.bounds, c.left_near, c.left_far, t_bound);
                 let t_right = packet_entry(p.bounds, c.right_near, c.right_far, t_bound);
@@ -146,7 +146,7 @@ fn traverse_packet(p: Packet) -> PacketHit {
             }
         }
         if index != NEEDS_POP {
-            let leaf = nodes[index & ~LEAF].quantized;
+            let leaf = node_at(index & ~LEAF).quantized;
             for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
                 hit = packet_test(i, p, hit);
             }

@@ -3,7 +3,7 @@
 // alike. The crossing test runs in the ray's frame (ray_frame.wgsl), where the
 // hit point is the origin and each edge's side is an exact function of its two
 // sheared vertices, so polygons sharing an edge leave no gap and no overlap.
-// import: bindings plane ray_frame types
+// import: plane ray_frame scene_arrays types
 
 fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
     let t = plane_intersect(p, ray, t_min, t_max);
@@ -19,7 +19,7 @@ fn polygon_intersect(p: GpuPrim, ray: Ray, frame: RayFrame, t_min: f32, t_max: f
     var inside = false;
     var prev: vec2<f32>;
     for (var i = 0u; i <= p.count; i++) {
-        let cur = to_frame_xy(frame, points[p.first + select(i - 1u, p.count - 1u, i == 0u)].xyz);
+        let cur = to_frame_xy(frame, point_at(p.first + select(i - 1u, p.count - 1u, i == 0u)).xyz);
         let rising = cur.y >= 0.0;
         if i > 0u && (prev.y >= 0.0) != rising {
             // The edge meets y = 0 at x = edge(prev, cur) / (cur.y − prev.y).
@@ -46,7 +46,7 @@ fn polygon_intersect4(p: GpuPrim, rays: Rays4, frame: RayFrame4, t_min: vec4<f32
     var inside = vec4<bool>(false);
     var prev: Vec3x4;
     for (var i = 0u; i <= p.count; i++) {
-        let cur = to_frame4(frame, points[p.first + select(i - 1u, p.count - 1u, i == 0u)].xyz);
+        let cur = to_frame4(frame, point_at(p.first + select(i - 1u, p.count - 1u, i == 0u)).xyz);
         let rising = cur.y >= zero;
         if i > 0u {
             let side = edge_sign4(prev, cur);

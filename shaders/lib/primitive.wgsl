@@ -1,5 +1,5 @@
 // Dispatch on primitive kind: intersection and surface normals.
-// import: bindings cone plane polygon ray_frame sphere triangle types
+// import: cone plane polygon ray_frame scene_arrays sphere triangle types
 
 // Takes the primitive's index, not its value: each case then loads only the
 // fields its kind uses (a load per SIMD lane is what a software rasteriser
@@ -7,21 +7,21 @@
 // the caller makes once per ray. The HAS_ flags of the kernel's specialisation
 // (glint-scene's specialization.rs) remove the tests of kinds the scene lacks.
 fn intersect_prim(i: u32, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
-    let kind = prim_kind(prims[i]);
+    let kind = prim_kind(prim_at(i));
     if HAS_SPHERES && kind == PRIM_SPHERE {
-        return sphere_intersect(prims[i], ray, t_min, t_max);
+        return sphere_intersect(prim_at(i), ray, t_min, t_max);
     }
     if HAS_TRIANGLES && kind == PRIM_TRIANGLE {
-        return triangle_intersect(prims[i], frame, t_min, t_max);
+        return triangle_intersect(prim_at(i), frame, t_min, t_max);
     }
     if HAS_POLYGONS && kind == PRIM_POLYGON {
-        return polygon_intersect(prims[i], ray, frame, t_min, t_max);
+        return polygon_intersect(prim_at(i), ray, frame, t_min, t_max);
     }
     if HAS_CONES && kind == PRIM_CONE {
-        return cone_intersect(prims[i], ray, t_min, t_max);
+        return cone_intersect(prim_at(i), ray, t_min, t_max);
     }
     if HAS_PLANES && kind == PRIM_PLANE {
-        return plane_intersect(prims[i], ray, t_min, t_max);
+        return plane_intersect(prim_at(i), ray, t_min, t_max);
     }
     return MISS;
 }

@@ -10,7 +10,7 @@
 // shadow ray towards the next light of the surface being shaded. The driver
 // inlines a call's whole walk and primitive tests, so a second call would be
 // a second copy of them to compile (a cold start pays for every copy).
-// import: bindings bvh checker dispatch primitive reflect refract shade shadow types
+// import: bindings bvh checker dispatch primitive reflect refract scene_arrays shade shadow types
 
 struct PendingRay {
     ray: Ray,
@@ -69,7 +69,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
                 color += pending.weight * uniforms.background;
                 shading = false;
             } else {
-                let p = prims[hit.prim];
+                let p = prim_at(hit.prim);
                 t_hit = hit.t;
                 s = surface_at(p, pending.ray, hit.t);
                 let m = material_at(p, s.point);

@@ -1,7 +1,7 @@
 // Ray–triangle intersection, watertight (Woop, Benthin & Wald 2013; see
 // ray_frame.wgsl) and two-sided. A ray through a shared edge or vertex gets a
 // zero edge function from every triangle there and hits them all.
-// import: bindings ray_frame types
+// import: ray_frame scene_arrays types
 
 fn triangle_intersect(p: GpuPrim, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
     let a = to_frame(frame, p.a.xyz);
@@ -58,6 +58,6 @@ fn triangle_shading_normal(p: GpuPrim, point: vec3<f32>) -> vec3<f32> {
     let w1 = dot(cross(p.c.xyz - p.b.xyz, point - p.b.xyz), n) * inv_area2;
     let w2 = dot(cross(p.a.xyz - p.c.xyz, point - p.c.xyz), n) * inv_area2;
     let w3 = 1.0 - w1 - w2;
-    let s = w1 * points[p.first].xyz + w2 * points[p.first + 1u].xyz + w3 * points[p.first + 2u].xyz;
+    let s = w1 * point_at(p.first).xyz + w2 * point_at(p.first + 1u).xyz + w3 * point_at(p.first + 2u).xyz;
     return normalize(s);
 }

@@ -88,7 +88,7 @@ impl SceneBuffers {
 impl Renderer {
     /// Compiles the present kernel from `source`.
     pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
-        let pipeline = create_pipeline(&self.device, source, Kernel::Present, Specialization::ALL, None)?;
+        let pipeline = create_pipeline(&self.device, source, Kernel::Present, Specialization::ALL, self.scene_arrays, None)?;
         Ok(PresentPipeline { pipeline })
     }
 

@@ -15,6 +15,7 @@ mod output;
 mod pipelines;
 pub mod probe;
 mod renderer;
+mod scene_textures;
 pub mod schedule;
 pub mod shaders;
 mod sink;

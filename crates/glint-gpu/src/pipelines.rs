@@ -11,7 +11,7 @@ use std::sync::Mutex;
 use glint_scene::specialization::Specialization;
 
 use crate::renderer::one_line;
-use crate::shaders::{Kernel, ShaderSource};
+use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::GpuError;
 
 pub(crate) struct Pipelines {
@@ -19,6 +19,7 @@ pub(crate) struct Pipelines {
     source: ShaderSource,
     /// The layout of the kernels bound to a scene (trace, primary).
     scene_layout: wgpu::PipelineLayout,
+    arrays: SceneArrays,
     built: Mutex<HashMap<(Kernel, Specialization), wgpu::ComputePipeline>>,
 }
 
@@ -26,16 +27,22 @@ impl Pipelines {
     /// Kernels read from a directory (the viewer's hot reload, possibly
     /// mid-edit) are checked at once, so a broken file is reported before any
     /// frame needs it; the embedded ones are checked by tests/wgsl.rs.
-    pub fn new(device: &wgpu::Device, source: &ShaderSource, scene_layout: wgpu::PipelineLayout) -> Result<Self, GpuError> {
+    pub fn new(
+        device: &wgpu::Device,
+        source: &ShaderSource,
+        scene_layout: wgpu::PipelineLayout,
+        arrays: SceneArrays,
+    ) -> Result<Self, GpuError> {
         if let ShaderSource::Dir(_) = source {
             for kernel in Kernel::ALL {
-                source.compose(kernel, Specialization::ALL)?.validate()?;
+                source.compose(kernel, Specialization::ALL, arrays)?.validate()?;
             }
         }
         Ok(Self {
             device: device.clone(),
             source: source.clone(),
             scene_layout,
+            arrays,
             built: Mutex::new(HashMap::new()),
         })
     }
@@ -49,7 +56,7 @@ impl Pipelines {
             return Ok(pipeline.clone());
         }
         let layout = matches!(kernel, Kernel::Trace | Kernel::Primary | Kernel::Diffuse).then_some(&self.scene_layout);
-        let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, layout)?;
+        let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, self.arrays, layout)?;
         self.built.lock().unwrap_or_else(|e| e.into_inner()).insert(key, pipeline.clone());
         Ok(pipeline)
     }
@@ -75,10 +82,11 @@ pub(crate) fn create_pipeline(
     source: &ShaderSource,
     kernel: Kernel,
     specialization: Specialization,
+    arrays: SceneArrays,
     layout: Option<&wgpu::PipelineLayout>,
 ) -> Result<wgpu::ComputePipeline, GpuError> {
     let entry = kernel.entry_point();
-    let composed = source.compose(kernel, specialization)?;
+    let composed = source.compose(kernel, specialization, arrays)?;
     composed.validate()?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let descriptor = wgpu::ShaderModuleDescriptor {

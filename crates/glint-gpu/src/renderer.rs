@@ -13,7 +13,8 @@ use wgpu::util::DeviceExt;
 
 use crate::pipelines::Pipelines;
 use crate::schedule::{BandScheduler, BATCH_TARGET};
-use crate::shaders::{Kernel, ShaderSource};
+use crate::scene_textures;
+use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tiles::Region;
 use crate::{display, GpuError, Image};
 
@@ -116,6 +117,7 @@ pub struct Renderer {
     pub(crate) pipelines: Pipelines,
     /// The bind group layout the trace and primary kernels share.
     pub(crate) scene_layout: wgpu::BindGroupLayout,
+    pub(crate) scene_arrays: SceneArrays,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
     /// Band sizes of batch renders, kept from frame to frame so the next one
@@ -154,14 +156,21 @@ pub struct SceneBuffers {
 }
 
 impl Renderer {
+    /// A renderer whose kernels read the scene's arrays as this process's
+    /// kernels read them best ([`SceneArrays::for_this_process`]).
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
-        let scene_layout = scene_bind_group_layout(&device);
+        Self::reading(device, queue, source, SceneArrays::for_this_process())
+    }
+
+    /// A renderer whose kernels read the scene's arrays from `arrays`.
+    pub fn reading(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, arrays: SceneArrays) -> Result<Self, GpuError> {
+        let scene_layout = scene_bind_group_layout(&device, arrays);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("scene"),
             bind_group_layouts: &[Some(&scene_layout)],
             immediate_size: 0,
         });
-        let pipelines = Pipelines::new(&device, source, pipeline_layout)?;
+        let pipelines = Pipelines::new(&device, source, pipeline_layout, arrays)?;
         let lost = Arc::new(Mutex::new(None));
         let record = Arc::clone(&lost);
         device.set_device_lost_callback(move |reason, message| {
@@ -173,6 +182,7 @@ impl Renderer {
             queue,
             pipelines,
             scene_layout,
+            scene_arrays: arrays,
             lost,
             bands: Mutex::new(BandScheduler::before_compile(BATCH_TARGET)),
             max_tile_pixels: None,
@@ -213,29 +223,35 @@ impl Renderer {
             ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
             ("BVH grids", bytemuck::cast_slice(&scene.grids)),
         ];
-        for (what, bytes) in arrays {
-            let need = bytes.len() as u64;
-            for (limit, have) in [
+        let limits = match self.scene_arrays {
+            SceneArrays::Textures => vec![("max_texture_dimension_2d", scene_textures::capacity(limits.max_texture_dimension_2d))],
+            SceneArrays::Buffers => vec![
                 ("max_storage_buffer_binding_size", u64::from(limits.max_storage_buffer_binding_size)),
                 ("max_buffer_size", limits.max_buffer_size),
-            ] {
+            ],
+        };
+        for (what, bytes) in arrays {
+            let need = bytes.len() as u64;
+            for &(limit, have) in &limits {
                 if need > have {
                     return Err(GpuError::Limit { what: what.into(), limit, need, have });
                 }
             }
         }
-
-        let storage = |label: &str, contents: &[u8]| {
-            self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            })
+        let (buffers, views);
+        let [prims, nodes, points, grids]: [wgpu::BindingResource; 4] = match self.scene_arrays {
+            SceneArrays::Buffers => {
+                buffers = arrays.map(|(what, contents)| {
+                    let usage = wgpu::BufferUsages::STORAGE;
+                    self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(what), contents, usage })
+                });
+                buffers.each_ref().map(|b| b.as_entire_binding())
+            }
+            SceneArrays::Textures => {
+                views = arrays.map(|(what, bytes)| scene_textures::upload(&self.device, &self.queue, what, bytes));
+                views.each_ref().map(wgpu::BindingResource::TextureView)
+            }
         };
-        let prims = storage("prims", arrays[0].1);
-        let nodes = storage("nodes", arrays[1].1);
-        let points = storage("points", arrays[2].1);
-        let grids = storage("grids", arrays[3].1);
         let uniform = |label: &str, contents: &[u8]| {
             self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -259,18 +275,29 @@ impl Renderer {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let buffers = [&uniforms_buffer, &prims, &nodes, &materials, &lights, &points, &accum, &stats, &grids, &dispatch];
-        let entries: Vec<wgpu::BindGroupEntry> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-            .collect();
+        let resources = [
+            uniforms_buffer.as_entire_binding(),
+            prims,
+            nodes,
+            materials.as_entire_binding(),
+            lights.as_entire_binding(),
+            points,
+            accum.as_entire_binding(),
+            stats.as_entire_binding(),
+            grids,
+            dispatch.as_entire_binding(),
+        ];
+        let entries: Vec<wgpu::BindGroupEntry> =
+            resources.into_iter().enumerate().map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource }).collect();
         let scene_bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),
             layout: &self.scene_layout,
             entries: &entries,
         });
-        let scene_bytes = arrays.iter().map(|(_, b)| b.len() as u64).sum();
+        let scene_bytes = match self.scene_arrays {
+            SceneArrays::Textures => arrays.iter().map(|(_, b)| scene_textures::device_bytes(b.len())).sum(),
+            SceneArrays::Buffers => arrays.iter().map(|(_, b)| b.len() as u64).sum(),
+        };
         Ok(SceneBuffers {
             width,
             height,
@@ -630,28 +657,34 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
     pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
 }
 
-/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl):
-/// the scene uniforms, five read-only scene arrays, the accumulation image, the
-/// ray counts, the BVH grids and the dispatch parameters.
-fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl
+/// and scene_buffers.wgsl or scene_textures.wgsl):
+/// the scene uniforms, the scene's arrays (primitives, BVH records, polygon
+/// points and BVH grids) as storage buffers or textures, as `arrays` says,
+/// the materials' and lights' uniform buffers, the accumulation image, the ray
+/// counts and the dispatch parameters.
+fn scene_bind_group_layout(device: &wgpu::Device, arrays: SceneArrays) -> wgpu::BindGroupLayout {
     let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
         count: None,
     };
-    let read_only = wgpu::BufferBindingType::Storage { read_only: true };
+    let array = |binding: u32| match arrays {
+        SceneArrays::Buffers => buffer(binding, wgpu::BufferBindingType::Storage { read_only: true }),
+        SceneArrays::Textures => scene_textures::layout_entry(binding),
+    };
     let read_write = wgpu::BufferBindingType::Storage { read_only: false };
     let entries = [
         buffer(0, wgpu::BufferBindingType::Uniform),
-        buffer(1, read_only),
-        buffer(2, read_only),
+        array(1),
+        array(2),
         buffer(3, wgpu::BufferBindingType::Uniform),
         buffer(4, wgpu::BufferBindingType::Uniform),
-        buffer(5, read_only),
+        array(5),
         buffer(6, read_write),
         buffer(7, read_write),
-        buffer(8, read_only),
+        array(8),
         buffer(9, wgpu::BufferBindingType::Uniform),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })

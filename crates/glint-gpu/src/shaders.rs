@@ -35,6 +35,8 @@ sources![
     "kernels/probe.wgsl",
     "lib/types.wgsl",
     "lib/bindings.wgsl",
+    "lib/scene_buffers.wgsl",
+    "lib/scene_textures.wgsl",
     "lib/camera.wgsl",
     "lib/sample.wgsl",
     "lib/ray_frame.wgsl",
@@ -196,6 +198,47 @@ impl Composed {
     }
 }
 
+/// The import that stands for the file of [`SceneArrays::file`].
+pub const SCENE_ARRAYS_IMPORT: &str = "lib/scene_arrays.wgsl";
+
+/// How the kernels read the scene's arrays (primitives, BVH records and
+/// grids, polygon points): `prim_at` and its siblings, declared alike by
+/// shaders/lib/scene_buffers.wgsl and scene_textures.wgsl, one of which a
+/// kernel's import `scene_arrays` composes, over the same bindings. A renderer
+/// reads one way (its bind group layout holds that kind of binding).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SceneArrays {
+    /// Storage buffers: what optimised kernels read fastest. lavapipe fetches
+    /// a texel through a call, around which an optimised kernel saves and
+    /// restores its registers (primary rays about 1.4× slower, measured).
+    Buffers,
+    /// Textures, for kernels compiled without LLVM's optimisation passes (a
+    /// first, small render on lavapipe): those keep every value in memory
+    /// anyway, and a texel costs them no per-lane bounds branch, as each
+    /// component of a storage buffer's load does (a quarter less to run and a
+    /// fifth less to compile, measured; docs/performance.md).
+    Textures,
+}
+
+impl SceneArrays {
+    pub const ALL: [SceneArrays; 2] = [SceneArrays::Buffers, SceneArrays::Textures];
+
+    /// The file that declares the scene's arrays read this way.
+    pub fn file(self) -> &'static str {
+        match self {
+            SceneArrays::Buffers => "lib/scene_buffers.wgsl",
+            SceneArrays::Textures => "lib/scene_textures.wgsl",
+        }
+    }
+
+    /// What this process's kernels read best: textures when lavapipe compiles
+    /// them without optimisation passes (`GALLIVM_PERF=nopt`, read once per
+    /// process, before the first device).
+    pub fn for_this_process() -> Self {
+        if crate::lavapipe::kernels_compile_quickly() { SceneArrays::Textures } else { SceneArrays::Buffers }
+    }
+}
+
 impl ShaderSource {
     /// The `shaders/` folder of this source tree, for hot reload.
     pub fn source_dir() -> PathBuf {
@@ -214,11 +257,11 @@ impl ShaderSource {
         }
     }
 
-    /// The kernel's source for scenes of `specialization`: the prelude, then
-    /// every file its imports reach.
-    pub fn compose(&self, kernel: Kernel, specialization: Specialization) -> Result<Composed, GpuError> {
+    /// The kernel's source for scenes of `specialization` whose arrays reach
+    /// it as `arrays` says: the prelude, then every file its imports reach.
+    pub fn compose(&self, kernel: Kernel, specialization: Specialization, arrays: SceneArrays) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
-        self.visit(kernel.file(), &mut Vec::new(), &mut order)?;
+        self.visit(kernel.file(), arrays, &mut Vec::new(), &mut order)?;
         let mut source = glint_scene::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
         let mut starts = vec![(PRELUDE.to_string(), 1)];
@@ -232,9 +275,11 @@ impl ShaderSource {
         Ok(Composed { source, files: starts })
     }
 
-    /// Appends `name` to `order` after everything it imports (depth first);
-    /// `path` is the chain of imports being followed, to report a cycle.
-    fn visit(&self, name: &str, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
+    /// Appends `name` to `order` after everything it imports (depth first),
+    /// the import of the scene's arrays as the file `arrays` names; `path` is
+    /// the chain of imports being followed, to report a cycle.
+    fn visit(&self, name: &str, arrays: SceneArrays, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
+        let name = if name == SCENE_ARRAYS_IMPORT { arrays.file() } else { name };
         if order.iter().any(|(done, _)| done == name) {
             return Ok(());
         }
@@ -244,7 +289,7 @@ impl ShaderSource {
         let text = self.read(name)?;
         path.push(name.to_string());
         for import in imports(&text) {
-            self.visit(&import, path, order)?;
+            self.visit(&import, arrays, path, order)?;
         }
         path.pop();
         order.push((name.to_string(), text));

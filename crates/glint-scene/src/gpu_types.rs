@@ -123,6 +123,16 @@ shared_constants! {
     MAX_LIGHTS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>()) as u32;
     MAX_MATERIALS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuMaterial>()) as u32;
 
+    /// The scene's arrays (primitives, BVH records and grids, polygon points)
+    /// reach the kernels as textures of this many 16-byte texels a row
+    /// (`prim_at` and its siblings in shaders/lib/scene_textures.wgsl): lavapipe
+    /// fetches a texel per lane without the branch that a storage buffer's
+    /// bounds check takes per lane and component (docs/performance.md, "The
+    /// scene's arrays in textures"). A power of two, divided by with a shift.
+    SCENE_TEXTURE_WIDTH: u32 = 1024;
+    /// Texels of one `GpuPrim`: its vertices a, b and c, then its four words.
+    PRIM_TEXELS: u32 = (std::mem::size_of::<GpuPrim>() / SCENE_TEXEL_BYTES) as u32;
+
     /// BVH traversal's stack: the builder bounds the tree's depth by it.
     BVH_STACK: u32 = BVH_MAX_DEPTH as u32;
     /// In a reference to a BVH record: a leaf. In `GpuNode::children`: the first child is a leaf.
@@ -150,6 +160,13 @@ shared_constants! {
 
 const _: () = assert!(STAT_SLOTS.is_power_of_two(), "flush_ray_counts takes the slot with a mask");
 const _: () = assert!(SPREAD_STRIPS.is_power_of_two(), "spread_workgroup divides by it with a shift");
+const _: () = assert!(SCENE_TEXTURE_WIDTH.is_power_of_two(), "texel_of divides by it with a shift");
+
+/// Bytes of a texel of the scene's textures (RGBA, 32 bits a channel).
+pub const SCENE_TEXEL_BYTES: usize = 16;
+const _: () = assert!(std::mem::size_of::<GpuPrim>() == PRIM_TEXELS as usize * SCENE_TEXEL_BYTES, "a primitive is whole texels");
+const _: () = assert!(std::mem::size_of::<GpuNode>() == SCENE_TEXEL_BYTES, "prim_at's siblings read one texel a record");
+const _: () = assert!(std::mem::size_of::<GpuGrid>() == SCENE_TEXEL_BYTES, "prim_at's siblings read one texel a record");
 
 /// What the trace kernel writes per pixel; mirrored by the VIEW_ constants in
 /// shaders/types.wgsl.

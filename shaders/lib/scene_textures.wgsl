@@ -1,0 +1,47 @@
+// The scene's arrays in textures of SCENE_TEXTURE_WIDTH texels of 16 bytes
+// a row, what kernels compiled without optimisation read fastest: the same
+// functions as scene_buffers.wgsl, from the same bytes.
+// import: types
+
+@group(0) @binding(1) var prim_texels: texture_2d<u32>;
+@group(0) @binding(2) var node_texels: texture_2d<u32>;
+// Polygon vertices and triangle vertex normals (xyz).
+@group(0) @binding(5) var point_texels: texture_2d<u32>;
+// The grids of the BVH's interior records, for the nodes traversal returns to.
+@group(0) @binding(8) var grid_texels: texture_2d<u32>;
+
+// Where texel `index` of a scene texture is: row-major, SCENE_TEXTURE_WIDTH a row.
+fn texel_of(index: u32) -> vec2<u32> {
+    return vec2<u32>(index % SCENE_TEXTURE_WIDTH, index / SCENE_TEXTURE_WIDTH);
+}
+
+// Primitive i. Its PRIM_TEXELS texels are its vertices a, b and c, then its
+// four words, as GpuPrim lays them out; the driver drops the fetches of the
+// members a caller does not use.
+fn prim_at(i: u32) -> GpuPrim {
+    let first = i * PRIM_TEXELS;
+    let words = textureLoad(prim_texels, texel_of(first + 3u), 0);
+    return GpuPrim(
+        bitcast<vec4<f32>>(textureLoad(prim_texels, texel_of(first), 0)),
+        bitcast<vec4<f32>>(textureLoad(prim_texels, texel_of(first + 1u), 0)),
+        bitcast<vec4<f32>>(textureLoad(prim_texels, texel_of(first + 2u), 0)),
+        words.x,
+        words.y,
+        words.z,
+        words.w,
+    );
+}
+
+fn node_at(i: u32) -> GpuNode {
+    let t = textureLoad(node_texels, texel_of(i), 0);
+    return GpuNode(t.xyz, t.w);
+}
+
+fn grid_at(i: u32) -> GpuGrid {
+    let t = textureLoad(grid_texels, texel_of(i), 0);
+    return GpuGrid(bitcast<vec3<f32>>(t.xyz), t.w);
+}
+
+fn point_at(i: u32) -> vec4<f32> {
+    return bitcast<vec4<f32>>(textureLoad(point_texels, texel_of(i), 0));
+}
