@@ -223,7 +223,7 @@ impl Renderer {
             ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
             ("BVH grids", bytemuck::cast_slice(&scene.grids)),
         ];
-        let limits = match self.scene_arrays {
+        let array_limits = match self.scene_arrays {
             SceneArrays::Textures => vec![("max_texture_dimension_2d", scene_textures::capacity(limits.max_texture_dimension_2d))],
             SceneArrays::Buffers => vec![
                 ("max_storage_buffer_binding_size", u64::from(limits.max_storage_buffer_binding_size)),
@@ -232,7 +232,7 @@ impl Renderer {
         };
         for (what, bytes) in arrays {
             let need = bytes.len() as u64;
-            for &(limit, have) in &limits {
+            for &(limit, have) in &array_limits {
                 if need > have {
                     return Err(GpuError::Limit { what: what.into(), limit, need, have });
                 }
