@@ -15,16 +15,16 @@ fn texel_of(index: u32) -> vec2<u32> {
     return vec2<u32>(index % SCENE_TEXTURE_WIDTH, index / SCENE_TEXTURE_WIDTH);
 }
 
-// Primitive i. Its PRIM_TEXELS texels are its vertices a, b and c, then its
-// four words, as GpuPrim lays them out; the driver drops the fetches of the
-// members a caller does not use.
+// Primitive i. Its PRIM_TEXELS texels, side by side in one row, are its
+// vertices a, b and c, then its four words, as GpuPrim lays them out; the
+// driver drops the fetches of the members a caller does not use.
 fn prim_at(i: u32) -> GpuPrim {
-    let first = i * PRIM_TEXELS;
-    let words = textureLoad(prim_texels, texel_of(first + 3u), 0);
+    let first = texel_of(i * PRIM_TEXELS);
+    let words = textureLoad(prim_texels, first + vec2<u32>(3u, 0u), 0);
     return GpuPrim(
-        bitcast<vec4<f32>>(textureLoad(prim_texels, texel_of(first), 0)),
-        bitcast<vec4<f32>>(textureLoad(prim_texels, texel_of(first + 1u), 0)),
-        bitcast<vec4<f32>>(textureLoad(prim_texels, texel_of(first + 2u), 0)),
+        bitcast<vec4<f32>>(textureLoad(prim_texels, first, 0)),
+        bitcast<vec4<f32>>(textureLoad(prim_texels, first + vec2<u32>(1u, 0u), 0)),
+        bitcast<vec4<f32>>(textureLoad(prim_texels, first + vec2<u32>(2u, 0u), 0)),
         words.x,
         words.y,
         words.z,

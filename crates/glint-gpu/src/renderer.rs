@@ -208,7 +208,7 @@ impl Renderer {
     }
 
     /// Uploads `scene` for rendering at `width` × `height`, checking the device's
-    /// buffer limits first. The accumulation buffer holds the whole image if
+    /// buffer and texture limits first. The accumulation buffer holds the whole image if
     /// the device can bind it, else the largest tile it can: any image size
     /// renders, tile by tile.
     pub fn upload(&self, scene: &GpuScene, uniforms: SceneUniforms) -> Result<SceneBuffers, GpuError> {

@@ -5,9 +5,8 @@
 //! branch a storage buffer's bounds check costs per lane and component.
 
 use glint_scene::gpu_types::{SCENE_TEXEL_BYTES, SCENE_TEXTURE_WIDTH};
-use wgpu::util::DeviceExt;
 
-pub(crate) const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 const ROW_BYTES: usize = SCENE_TEXTURE_WIDTH as usize * SCENE_TEXEL_BYTES;
 
@@ -27,27 +26,34 @@ pub(crate) fn device_bytes(bytes: usize) -> u64 {
     u64::from(rows(bytes)) * ROW_BYTES as u64
 }
 
-/// Uploads `bytes`, whole texels, as a texture whose last row is padded with zeros.
+/// Uploads `bytes`, whole texels, as a texture: its whole rows, then what
+/// is left as the start of the last row, whose rest wgpu zeroes.
 pub(crate) fn upload(device: &wgpu::Device, queue: &wgpu::Queue, label: &str, bytes: &[u8]) -> wgpu::TextureView {
     debug_assert_eq!(bytes.len() % SCENE_TEXEL_BYTES, 0, "{label}: whole texels");
-    let rows = rows(bytes.len());
-    let mut texels = bytes.to_vec();
-    texels.resize(rows as usize * ROW_BYTES, 0);
-    let texture = device.create_texture_with_data(
-        queue,
-        &wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width: SCENE_TEXTURE_WIDTH, height: rows, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FORMAT,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        &texels,
-    );
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: SCENE_TEXTURE_WIDTH, height: rows(bytes.len()), depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: FORMAT,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let (whole, tail) = bytes.split_at(bytes.len() / ROW_BYTES * ROW_BYTES);
+    let write = |data: &[u8], y: u32, texels: usize, rows: usize| {
+        let origin = wgpu::Origin3d { x: 0, y, z: 0 };
+        let layout = wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(ROW_BYTES as u32), rows_per_image: None };
+        let size = wgpu::Extent3d { width: texels as u32, height: rows as u32, depth_or_array_layers: 1 };
+        queue.write_texture(wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: 0, origin, aspect: wgpu::TextureAspect::All }, data, layout, size);
+    };
+    let whole_rows = whole.len() / ROW_BYTES;
+    if whole_rows > 0 {
+        write(whole, 0, SCENE_TEXTURE_WIDTH as usize, whole_rows);
+    }
+    if !tail.is_empty() {
+        write(tail, whole_rows as u32, tail.len() / SCENE_TEXEL_BYTES, 1);
+    }
     texture.create_view(&Default::default())
 }
 

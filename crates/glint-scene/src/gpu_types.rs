@@ -165,6 +165,7 @@ const _: () = assert!(SCENE_TEXTURE_WIDTH.is_power_of_two(), "texel_of divides b
 /// Bytes of a texel of the scene's textures (RGBA, 32 bits a channel).
 pub const SCENE_TEXEL_BYTES: usize = 16;
 const _: () = assert!(std::mem::size_of::<GpuPrim>() == PRIM_TEXELS as usize * SCENE_TEXEL_BYTES, "a primitive is whole texels");
+const _: () = assert!(SCENE_TEXTURE_WIDTH % PRIM_TEXELS == 0, "prim_at finds a primitive's texels in one row");
 const _: () = assert!(std::mem::size_of::<GpuNode>() == SCENE_TEXEL_BYTES, "prim_at's siblings read one texel a record");
 const _: () = assert!(std::mem::size_of::<GpuGrid>() == SCENE_TEXEL_BYTES, "prim_at's siblings read one texel a record");
 
