@@ -86,12 +86,11 @@ pub(crate) fn create_pipeline(
     layout: Option<&wgpu::PipelineLayout>,
 ) -> Result<wgpu::ComputePipeline, GpuError> {
     let entry = kernel.entry_point();
-    let composed = source.compose(kernel, specialization, arrays)?;
-    composed.validate()?;
+    let module = source.compose(kernel, specialization, arrays)?.validate()?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let descriptor = wgpu::ShaderModuleDescriptor {
         label: Some(entry),
-        source: wgpu::ShaderSource::Wgsl(composed.source.as_str().into()),
+        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
     };
     let module = match source {
         // SAFETY: the embedded kernels are Glint's own. Every loop in them ends:
