@@ -86,11 +86,13 @@ pub(crate) fn create_pipeline(
     layout: Option<&wgpu::PipelineLayout>,
 ) -> Result<wgpu::ComputePipeline, GpuError> {
     let entry = kernel.entry_point();
-    let module = source.compose(kernel, specialization, arrays)?.validate()?;
+    // Parsed and validated here, with errors that name file and line; wgpu
+    // takes the IR as it is rather than parsing the WGSL again.
+    let ir = source.compose(kernel, specialization, arrays)?.validate()?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let descriptor = wgpu::ShaderModuleDescriptor {
         label: Some(entry),
-        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(module)),
+        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(ir)),
     };
     let module = match source {
         // SAFETY: the embedded kernels are Glint's own. Every loop in them ends:
