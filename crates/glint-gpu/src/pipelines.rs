@@ -21,6 +21,10 @@ pub(crate) struct Pipelines {
     scene_layout: wgpu::PipelineLayout,
     arrays: SceneArrays,
     built: Mutex<HashMap<(Kernel, Specialization), wgpu::ComputePipeline>>,
+    /// Held while a pipeline is created, so that two threads needing the same
+    /// one (the viewer's warm-up and its first canvas) create it once: a second
+    /// pipeline would be compiled again at its first dispatch.
+    creating: Mutex<()>,
 }
 
 impl Pipelines {
@@ -44,6 +48,7 @@ impl Pipelines {
             scene_layout,
             arrays,
             built: Mutex::new(HashMap::new()),
+            creating: Mutex::new(()),
         })
     }
 
@@ -52,8 +57,13 @@ impl Pipelines {
     pub fn get(&self, kernel: Kernel, specialization: Specialization) -> Result<wgpu::ComputePipeline, GpuError> {
         let specialization = kernel.compiled_for(specialization);
         let key = (kernel, specialization);
-        if let Some(pipeline) = self.built.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-            return Ok(pipeline.clone());
+        let built = || self.built.lock().unwrap_or_else(|e| e.into_inner()).get(&key).cloned();
+        if let Some(pipeline) = built() {
+            return Ok(pipeline);
+        }
+        let _creating = self.creating.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(pipeline) = built() {
+            return Ok(pipeline);
         }
         let layout = matches!(kernel, Kernel::Trace | Kernel::Primary | Kernel::Diffuse).then_some(&self.scene_layout);
         let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, self.arrays, layout)?;
@@ -63,8 +73,13 @@ impl Pipelines {
 
     /// The kernels with a pipeline so far, for any specialisation.
     pub fn kernels(&self) -> Vec<Kernel> {
-        let built = self.built.lock().unwrap_or_else(|e| e.into_inner());
-        Kernel::ALL.into_iter().filter(|&kernel| built.keys().any(|&(built, _)| built == kernel)).collect()
+        let built = self.built();
+        Kernel::ALL.into_iter().filter(|&kernel| built.iter().any(|&(built, _)| built == kernel)).collect()
+    }
+
+    /// Each pipeline so far: its kernel and the specialisation it was compiled for.
+    pub fn built(&self) -> Vec<(Kernel, Specialization)> {
+        self.built.lock().unwrap_or_else(|e| e.into_inner()).keys().copied().collect()
     }
 
     /// Creates the pipelines of `kernels` for `specialization` that do not exist yet.

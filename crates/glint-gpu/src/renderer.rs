@@ -207,6 +207,14 @@ impl Renderer {
         self.pipelines.create(kernels, scene.specialization)
     }
 
+    /// Creates now the pipelines that dispatches of `views` on `scene` use.
+    pub fn create_view_pipelines(&self, scene: &SceneBuffers, views: &[View]) -> Result<(), GpuError> {
+        for &view in views {
+            self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view))?;
+        }
+        Ok(())
+    }
+
     /// Uploads `scene` for rendering at `width` × `height`, checking the device's
     /// buffer and texture limits first. The accumulation buffer holds the whole image if
     /// the device can bind it, else the largest tile it can: any image size
@@ -529,6 +537,12 @@ impl Renderer {
     /// The kernels whose pipelines this renderer has created so far.
     pub fn kernels_created(&self) -> Vec<Kernel> {
         self.pipelines.kernels()
+    }
+
+    /// Each pipeline created so far, by kernel and the specialisation it was
+    /// compiled for (a software rasteriser compiles each at its first dispatch).
+    pub fn pipelines_created(&self) -> Vec<(Kernel, Specialization)> {
+        self.pipelines.built()
     }
 
     /// Whether renders resolve on the host (a CPU adapter) instead of with the

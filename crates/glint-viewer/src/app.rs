@@ -21,6 +21,7 @@ use crate::jobs::{Job, Jobs};
 use crate::selection::Selection;
 use crate::settings::Settings;
 use crate::shaders::Shaders;
+use crate::warm_up::WarmUp;
 
 /// What the viewer opens with.
 pub struct ViewerOptions {
@@ -118,14 +119,16 @@ impl ViewerApp {
             sink.lock().expect("never poisoned").push(one_line(e));
         }));
         let max_side = rs.device.limits().max_texture_dimension_2d.min(MAX_IMAGE_SIDE);
+        let settings = Settings::default();
+        let warm_up = WarmUp::new(settings.view);
         let mut app = Self {
             device: rs.device.clone(),
             adapter: format!("{} ({:?})", info.name, info.backend),
             device_errors,
             jobs: Jobs::new(cc.egui_ctx.clone()),
-            shaders: Shaders::new(rs.device.clone(), rs.queue.clone(), options.shaders),
-            document: Document::default(),
-            settings: Settings::default(),
+            shaders: Shaders::new(rs.device.clone(), rs.queue.clone(), options.shaders, warm_up.clone()),
+            document: Document::new(warm_up),
+            settings,
             selection: Selection::default(),
             image: TracedImage::new(rs.device.clone(), Arc::clone(&rs.renderer), max_side),
             inspector: Inspector::default(),
@@ -349,7 +352,7 @@ impl eframe::App for ViewerApp {
             self.image.represent = true;
         }
         let (kernels, doc) = (self.shaders.kernels.as_ref(), self.document.loaded.as_ref());
-        self.image.ensure_canvas(kernels, doc, &self.jobs);
+        self.image.ensure_canvas(kernels, doc, self.settings.view, &self.jobs);
         self.image.render(&ctx, doc, &self.settings, &mut self.errors.gpu);
         // After the render, which writes edits into the canvas the probe reads.
         self.inspector.update(&self.image, doc, &self.jobs, &mut self.errors.gpu);

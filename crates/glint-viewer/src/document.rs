@@ -11,6 +11,7 @@ use crate::app::one_line;
 use crate::camera_control;
 use crate::jobs::{Job, Jobs};
 use crate::settings::SpecularChoice;
+use crate::warm_up::WarmUp;
 use crate::watch::Watch;
 
 #[derive(Default)]
@@ -32,9 +33,15 @@ pub(crate) struct Document {
     pub save_path: String,
     /// The last scene that loaded.
     pub loaded: Option<LoadedScene>,
+    /// Takes the first scene loaded.
+    warm_up: Option<WarmUp>,
 }
 
 impl Document {
+    pub fn new(warm_up: WarmUp) -> Self {
+        Self { warm_up: Some(warm_up), ..Self::default() }
+    }
+
     pub fn is_watched(&self) -> bool {
         self.watch.is_some()
     }
@@ -69,11 +76,15 @@ impl Document {
         self.loading = true;
         let generation = self.generation;
         let text = self.built_in;
+        let warm_up = self.warm_up.take();
         jobs.spawn("load", move || {
             let result = match text {
                 Some(text) => glint_scene::toml_scene::parse(text, &path),
                 None => glint_scene::load(&path),
             };
+            if let (Ok(scene), Some(warm_up)) = (&result, warm_up) {
+                warm_up.scene(scene);
+            }
             Job::Loaded { generation, path, reload, result }
         });
     }

@@ -12,9 +12,9 @@ use std::time::{Duration, Instant};
 
 use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
-use glint_gpu::shaders::{Kernel, ShaderSource};
+use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
-use glint_scene::gpu_types::{GpuLight, GpuMaterial, SceneUniforms};
+use glint_scene::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
 use glint_scene::Scene;
 
 /// Bands submitted but not finished; more would only queue up latency.
@@ -37,11 +37,33 @@ impl Kernels {
         let present = renderer.present_pipeline(source)?;
         Ok(Self { renderer, present, source: source.clone(), queue: queue.clone() })
     }
+
+    /// Has the device compile the kernel a canvas of `scene` first dispatches
+    /// for `view`, by tracing one pixel. lavapipe compiles a kernel at its
+    /// first dispatch, on its queue's one thread; done as soon as kernels and
+    /// scene are both there, that compile runs while the window starts rather
+    /// than after the first frame, which gives the canvas its size.
+    pub fn warm_up(&self, scene: &Scene, view: View) -> Result<(), GpuError> {
+        let mut prepared = self.renderer.prepare(scene, 1, 1, Acceleration::Bvh)?;
+        specialise(&mut prepared, view);
+        self.renderer.trace_rows(&prepared.buffers, 0, &RenderOptions { view, ..RenderOptions::default() }, 0..1)
+    }
 }
 
-/// The kernels a canvas dispatches: the shaded image and the debug views
-/// (trace), the data views and picking (primary).
-const CANVAS_KERNELS: [Kernel; 2] = [Kernel::Trace, Kernel::Primary];
+/// A canvas's kernels compile the view it is made for alone (lavapipe compiles
+/// the shaded one about a tenth sooner than one for every view); a dispatch of
+/// another view gets the kernels for every view, once
+/// (`Specialization::dispatching`).
+fn specialise(prepared: &mut Prepared, view: View) {
+    let specialization = &mut prepared.buffers.specialization;
+    *specialization = specialization.for_views(&[view]);
+}
+
+/// The views whose pipelines a canvas creates up front: the one it shows, and
+/// the object ids, for picking.
+fn canvas_views(view: View) -> [View; 2] {
+    [view, View::Id]
+}
 
 /// A scene on the device at one image size, with the texture its image goes to.
 pub struct Canvas {
@@ -54,14 +76,16 @@ pub struct Canvas {
 }
 
 impl Canvas {
-    /// Builds the BVH, uploads `scene` for `width` × `height` and makes its texture.
-    pub fn new(kernels: Arc<Kernels>, scene: &Scene, width: u32, height: u32, scene_generation: u64) -> Result<Self, GpuError> {
-        let prepared = kernels.renderer.prepare(scene, width, height, Acceleration::Bvh)?;
+    /// Builds the BVH, uploads `scene` for `width` × `height` and makes its
+    /// texture, for showing `view` first.
+    pub fn new(kernels: Arc<Kernels>, scene: &Scene, view: View, size: (u32, u32), scene_generation: u64) -> Result<Self, GpuError> {
+        let mut prepared = kernels.renderer.prepare(scene, size.0, size.1, Acceleration::Bvh)?;
         // Progressive rendering needs the whole image on the device at once.
         prepared.buffers.check_whole_image()?;
-        // Here, off the UI thread: the shaded image, the debug views and picking,
-        // for the scene's own terms; the first edit beyond them widens them.
-        kernels.renderer.create_pipelines(&prepared.buffers, &CANVAS_KERNELS)?;
+        specialise(&mut prepared, view);
+        // Here, off the UI thread, for the scene's own terms; the first edit
+        // beyond them widens them.
+        kernels.renderer.create_view_pipelines(&prepared.buffers, &canvas_views(view))?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
         Ok(Self { kernels, prepared, target, scene_generation, counter })
@@ -73,11 +97,11 @@ impl Canvas {
     /// switches to the kernels with every term, once. Until then the kernels
     /// carry only what the scene uses, which lavapipe compiles in about two
     /// thirds of the time, so the first image comes sooner.
-    pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight], uniforms: &SceneUniforms) -> Result<(), GpuError> {
+    pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight], uniforms: &SceneUniforms, view: View) -> Result<(), GpuError> {
         let specialization = &mut self.prepared.buffers.specialization;
         if !specialization.covers(materials) || !specialization.covers_lights(lights) || !specialization.covers_uniforms(uniforms) {
             *specialization = specialization.editable();
-            self.kernels.renderer.create_pipelines(&self.prepared.buffers, &CANVAS_KERNELS)?;
+            self.kernels.renderer.create_view_pipelines(&self.prepared.buffers, &canvas_views(view))?;
         }
         Ok(())
     }
@@ -223,5 +247,34 @@ impl Accumulation {
             self.rays_per_second = if span > 0.0 { rays as f64 / span } else { 0.0 };
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+    use std::sync::Arc;
+
+    use glint_gpu::shaders::{Kernel, ShaderSource};
+    use glint_scene::gpu_types::View;
+
+    use super::{Canvas, Kernels};
+
+    #[test]
+    fn the_warm_up_compiles_the_kernel_the_first_canvas_dispatches() {
+        let gpu = glint_gpu::Gpu::new().expect("a device (lavapipe in CI)");
+        let kernels = Arc::new(Kernels::compile(&gpu.device, &gpu.queue, &ShaderSource::Embedded).unwrap());
+        let scene = glint_scene::load(Path::new("spd:tetra:1")).unwrap();
+        kernels.warm_up(&scene, View::Shaded).unwrap();
+        let warmed = kernels.renderer.pipelines_created();
+        let canvas = Canvas::new(Arc::clone(&kernels), &scene, View::Shaded, (40, 30), 1).unwrap();
+        let specialization = canvas.prepared.buffers.specialization;
+        assert_eq!(specialization.view, Some(View::Shaded), "the canvas's kernels are for its first view alone");
+        assert_eq!(warmed, [(Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)))]);
+        // Beyond it the canvas creates picking's kernel, for every view.
+        let mut created = kernels.renderer.pipelines_created();
+        created.retain(|p| !warmed.contains(p));
+        assert_eq!(created, [(Kernel::Primary, Kernel::Primary.compiled_for(specialization.dispatching(View::Id)))]);
+        assert_eq!(specialization.dispatching(View::Id).view, None);
     }
 }

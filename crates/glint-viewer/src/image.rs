@@ -10,14 +10,14 @@ use std::time::{Duration, Instant};
 use egui::{Pos2, Rect, Vec2};
 use glam::Vec3;
 use glint_gpu::{GpuError, PngBits};
-use glint_scene::gpu_types;
+use glint_scene::gpu_types::{self, View};
 use glint_scene::Camera;
 
 use crate::app::one_line;
 use crate::document::LoadedScene;
 use crate::engine::{Accumulation, Canvas, Kernels, Step};
 use crate::jobs::{Job, Jobs};
-use crate::settings::{Settings, SpecularChoice};
+use crate::settings::Settings;
 
 /// What a canvas was made for; a canvas whose key differs is out of date.
 #[derive(Clone, PartialEq)]
@@ -141,7 +141,7 @@ impl TracedImage {
     /// Starts building a new canvas when the size, scene or kernels changed.
     /// Lights need none: the device holds room for as many as a scene may
     /// have (gpu_types::MAX_LIGHTS), and the viewer turns them on in place.
-    pub fn ensure_canvas(&mut self, kernels: Option<&Arc<Kernels>>, doc: Option<&LoadedScene>, jobs: &Jobs<Job>) {
+    pub fn ensure_canvas(&mut self, kernels: Option<&Arc<Kernels>>, doc: Option<&LoadedScene>, view: View, jobs: &Jobs<Job>) {
         if self.preparing {
             return;
         }
@@ -159,8 +159,7 @@ impl TracedImage {
         self.preparing = true;
         let job_key = key.clone();
         jobs.spawn("upload", move || {
-            let (w, h) = key.size;
-            let result = Canvas::new(kernels, &snapshot, w, h, key.scene_generation).map(Box::new);
+            let result = Canvas::new(kernels, &snapshot, view, key.size, key.scene_generation).map(Box::new);
             Job::Prepared { result, key: job_key }
         });
     }
@@ -202,14 +201,15 @@ impl TracedImage {
     /// Writes the edited scene into the canvas and starts accumulating anew.
     /// False when there is no canvas yet; more lights than the device holds
     /// are an error.
-    fn sync(&mut self, doc: &LoadedScene, specular: SpecularChoice) -> Result<bool, GpuError> {
+    fn sync(&mut self, doc: &LoadedScene, settings: &Settings) -> Result<bool, GpuError> {
+        let specular = settings.specular;
         let Some(canvas) = &mut self.canvas else { return Ok(false) };
         let scene = &doc.scene;
         let materials: Vec<_> = scene.materials.iter().map(|m| gpu_types::pack_material(&specular.apply(m))).collect();
         let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
         let (width, height) = canvas.size();
         let uniforms = gpu_types::scene_uniforms(scene, width, height, lights.len() as u32, canvas.prepared.buffers.bvh_root());
-        canvas.take_edits(&materials, &lights, &uniforms)?;
+        canvas.take_edits(&materials, &lights, &uniforms, settings.view)?;
         let renderer = &canvas.kernels.renderer;
         let buffers = &canvas.prepared.buffers;
         renderer.write_materials(buffers, &materials)?;
@@ -224,7 +224,7 @@ impl TracedImage {
     pub fn render(&mut self, ctx: &egui::Context, doc: Option<&LoadedScene>, settings: &Settings, error: &mut Option<String>) {
         let Some(doc) = doc.filter(|&d| self.canvas_is_current(Some(d))) else { return };
         if self.dirty {
-            match self.sync(doc, settings.specular) {
+            match self.sync(doc, settings) {
                 Ok(true) => self.dirty = false,
                 Ok(false) => return,
                 Err(e) => {

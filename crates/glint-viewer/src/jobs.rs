@@ -16,7 +16,7 @@ use crate::image::CanvasKey;
 
 /// A finished background job.
 pub(crate) enum Job {
-    Compiled { result: Result<Kernels, GpuError>, fallback_error: Option<GpuError> },
+    Compiled { result: Result<Arc<Kernels>, GpuError>, fallback_error: Option<GpuError> },
     Loaded { generation: u64, path: PathBuf, reload: bool, result: Result<Scene, LoadError> },
     Prepared { key: CanvasKey, result: Result<Box<Canvas>, GpuError> },
     ProberCompiled { kernels: Arc<Kernels>, result: Result<Prober, GpuError> },

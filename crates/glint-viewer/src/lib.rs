@@ -23,6 +23,7 @@ mod selection;
 mod settings;
 mod shaders;
 mod viewport;
+mod warm_up;
 mod watch;
 
 use std::path::PathBuf;

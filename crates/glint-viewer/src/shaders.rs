@@ -10,6 +10,7 @@ use glint_gpu::GpuError;
 use crate::app::one_line;
 use crate::engine::Kernels;
 use crate::jobs::{Job, Jobs};
+use crate::warm_up::WarmUp;
 use crate::watch::Watch;
 
 pub(crate) struct Shaders {
@@ -23,10 +24,12 @@ pub(crate) struct Shaders {
     pub compiling: bool,
     /// The files changed while compiling: compile once more when done.
     compile_again: bool,
+    /// Takes the first kernels compiled.
+    warm_up: Option<WarmUp>,
 }
 
 impl Shaders {
-    pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: ShaderSource) -> Self {
+    pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: ShaderSource, warm_up: WarmUp) -> Self {
         let watch = match &source {
             ShaderSource::Dir(dir) => {
                 let files = SOURCES.iter().map(|f| dir.join(f)).collect();
@@ -34,7 +37,7 @@ impl Shaders {
             }
             ShaderSource::Embedded => None,
         };
-        Self { device, queue, source, watch, kernels: None, compiling: false, compile_again: false }
+        Self { device, queue, source, watch, kernels: None, compiling: false, compile_again: false, warm_up: Some(warm_up) }
     }
 
     pub fn is_watched(&self) -> bool {
@@ -54,20 +57,25 @@ impl Shaders {
         self.compiling = true;
         let (device, queue, source) = (self.device.clone(), self.queue.clone(), self.source.clone());
         let first = self.kernels.is_none();
-        jobs.spawn("shaders", move || match Kernels::compile(&device, &queue, &source) {
-            // A broken shader file at start-up still gives a working viewer.
-            Err(e) if first && matches!(source, ShaderSource::Dir(_)) => Job::Compiled {
-                result: Kernels::compile(&device, &queue, &ShaderSource::Embedded),
-                fallback_error: Some(e),
-            },
-            result => Job::Compiled { result, fallback_error: None },
+        let warm_up = self.warm_up.take();
+        jobs.spawn("shaders", move || {
+            let (result, fallback_error) = match Kernels::compile(&device, &queue, &source) {
+                // A broken shader file at start-up still gives a working viewer.
+                Err(e) if first && matches!(source, ShaderSource::Dir(_)) => (Kernels::compile(&device, &queue, &ShaderSource::Embedded), Some(e)),
+                result => (result, None),
+            };
+            let result = result.map(Arc::new);
+            if let (Ok(kernels), Some(warm_up)) = (&result, warm_up) {
+                warm_up.kernels(kernels);
+            }
+            Job::Compiled { result, fallback_error }
         });
     }
 
     /// Takes a finished compile, reporting into `error`; true when it gave new kernels.
     pub fn finish_compile(
         &mut self,
-        result: Result<Kernels, GpuError>,
+        result: Result<Arc<Kernels>, GpuError>,
         fallback_error: Option<GpuError>,
         error: &mut Option<String>,
         jobs: &Jobs<Job>,
@@ -75,7 +83,7 @@ impl Shaders {
         self.compiling = false;
         let compiled = match result {
             Ok(kernels) => {
-                self.kernels = Some(Arc::new(kernels));
+                self.kernels = Some(kernels);
                 *error = fallback_error.map(|e| one_line(format!("{e} (using the built-in shaders)")));
                 true
             }

@@ -102,6 +102,27 @@ fn a_light_made_to_fade_fades() {
     assert!(diff > 2.0, "a light 6 units away at 1/d² is much dimmer, the image hardly changed: {diff}");
 }
 
+/// The canvas's kernels are compiled for the view it opens in; any other view
+/// gets its own, and the first view's image comes back as it was.
+#[test]
+fn another_view_renders_and_the_shaded_view_comes_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = harness(Some(write_scene(dir.path(), SCENE)), ShaderSource::Embedded);
+    settle(&mut h);
+    let shaded = image_of(&mut h);
+    for (view, changed) in [("normals", true), ("shaded", false)] {
+        h.get_by_label("view").click();
+        h.run_steps(2);
+        h.get_by_label(view).click();
+        h.step();
+        settle(&mut h);
+        assert!(h.state().errors().is_empty(), "{:?}", h.state().errors());
+        let diff = mean_difference(&shaded, &image_of(&mut h));
+        assert_eq!(diff > 10.0, changed, "the {view} view against the first shaded image: {diff}");
+        assert!(changed || diff < 0.5, "the shaded view again: {diff}");
+    }
+}
+
 #[test]
 fn the_camera_orbits_flies_and_frames_the_scene() {
     let dir = tempfile::tempdir().unwrap();
