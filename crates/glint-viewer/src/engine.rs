@@ -59,12 +59,6 @@ fn specialise(prepared: &mut Prepared, view: View) {
     *specialization = specialization.for_views(&[view]);
 }
 
-/// The views whose pipelines a canvas creates up front: the one it shows, and
-/// the object ids, for picking.
-fn canvas_views(view: View) -> [View; 2] {
-    [view, View::Id]
-}
-
 /// A scene on the device at one image size, with the texture its image goes to.
 pub struct Canvas {
     pub kernels: Arc<Kernels>,
@@ -84,8 +78,11 @@ impl Canvas {
         prepared.buffers.check_whole_image()?;
         specialise(&mut prepared, view);
         // Here, off the UI thread, for the scene's own terms; the first edit
-        // beyond them widens them.
-        kernels.renderer.create_view_pipelines(&prepared.buffers, &canvas_views(view))?;
+        // beyond them widens them. Only the view's: lavapipe creates a pipeline
+        // under the lock its queue holds while it compiles, so a second one
+        // here would hold the canvas back until the first compile is done.
+        // Picking's is created at the first pick, which compiles it anyway.
+        kernels.renderer.create_view_pipelines(&prepared.buffers, &[view])?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
         Ok(Self { kernels, prepared, target, scene_generation, counter })
@@ -101,7 +98,7 @@ impl Canvas {
         let specialization = &mut self.prepared.buffers.specialization;
         if !specialization.covers(materials) || !specialization.covers_lights(lights) || !specialization.covers_uniforms(uniforms) {
             *specialization = specialization.editable();
-            self.kernels.renderer.create_view_pipelines(&self.prepared.buffers, &canvas_views(view))?;
+            self.kernels.renderer.create_view_pipelines(&self.prepared.buffers, &[view])?;
         }
         Ok(())
     }
@@ -271,7 +268,9 @@ mod tests {
         let specialization = canvas.prepared.buffers.specialization;
         assert_eq!(specialization.view, Some(View::Shaded), "the canvas's kernels are for its first view alone");
         assert_eq!(warmed, [(Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)))]);
-        // Beyond it the canvas creates picking's kernel, for every view.
+        assert_eq!(kernels.renderer.pipelines_created(), warmed, "the canvas needs no other pipeline for its first image");
+        // Picking gets the primary kernel for every view.
+        canvas.renderer().pick(&canvas.prepared.buffers, 20, 15).unwrap();
         let mut created = kernels.renderer.pipelines_created();
         created.retain(|p| !warmed.contains(p));
         assert_eq!(created, [(Kernel::Primary, Kernel::Primary.compiled_for(specialization.dispatching(View::Id)))]);
