@@ -393,8 +393,9 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     plan.encode_video(args.quiet)?;
     if args.stats {
-        let quick_kernels = gpu.adapter.get_info().name.contains("llvmpipe").then(glint_gpu::kernels_compile_quickly);
-        print_stats(&stats, quick_kernels, args.json);
+        let info = gpu.adapter.get_info();
+        let lavapipe = info.name.contains("llvmpipe").then(|| (glint_gpu::kernels_compile_quickly(), glint_gpu::vector_bits(&info)));
+        print_stats(&stats, lavapipe, args.json);
     }
     Ok(())
 }
@@ -477,8 +478,8 @@ fn samples(args: &RenderArgs, region: Region, frames: u64) -> u64 {
 }
 
 /// The rays traced, and on lavapipe whether its kernels skipped LLVM's
-/// optimisation passes (`quick_kernels`).
-fn print_stats(stats: &RayStats, quick_kernels: Option<bool>, json: bool) {
+/// optimisation passes (`quick_kernels`) and their SIMD width (`vector_bits`).
+fn print_stats(stats: &RayStats, lavapipe: Option<(bool, Option<u32>)>, json: bool) {
     if json {
         let mut value = serde_json::json!({
             "eye_hit": stats.eye_hit,
@@ -487,14 +488,16 @@ fn print_stats(stats: &RayStats, quick_kernels: Option<bool>, json: bool) {
             "reflect": stats.reflect,
             "refract": stats.refract,
         });
-        if let Some(quick) = quick_kernels {
+        if let Some((quick, bits)) = lavapipe {
             value["quick_kernels"] = quick.into();
+            value["vector_bits"] = bits.into();
         }
         println!("{value}");
     } else {
-        if let Some(quick) = quick_kernels {
+        if let Some((quick, bits)) = lavapipe {
             let how = if quick { "quickly, without LLVM's optimisation passes (a first, small render)" } else { "optimised" };
-            println!("kernels compiled {how}");
+            let width = bits.map_or_else(String::new, |bits| format!(", {bits}-bit vectors"));
+            println!("kernels compiled {how}{width}");
         }
         println!("eye rays (hit):  {}", stats.eye_hit);
         println!("eye rays (miss): {}", stats.eye_miss);

@@ -122,7 +122,11 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         let out = dir.path().join("out.exr");
         let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
         let args = ["render", scene.to_str().unwrap(), "--width", size, "--height", size, "--spp", spp, "--stats", "--json", "-o", out.to_str().unwrap()];
-        command.args(args).env(glint_gpu::ADAPTER_ENV, "llvmpipe").env_remove(glint_gpu::SHADER_CACHE_ENV);
+        command
+            .args(args)
+            .env(glint_gpu::ADAPTER_ENV, "llvmpipe")
+            .env_remove(glint_gpu::SHADER_CACHE_ENV)
+            .env_remove(glint_gpu::LAVAPIPE_WIDTH_ENV);
         match cache_home {
             Some(home) => command.env("XDG_CACHE_HOME", dir.path().join(home)).env_remove("MESA_SHADER_CACHE_DISABLE"),
             None => command.env("MESA_SHADER_CACHE_DISABLE", "true"),
@@ -134,13 +138,27 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         let o = command.output().expect("glint runs");
         assert!(o.status.success(), "{}", stderr(&o));
         let stats: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--stats --json prints JSON");
-        (std::fs::read(out).unwrap(), stats["quick_kernels"].as_bool().expect("lavapipe reports its kernels"))
+        let bits = stats["vector_bits"].as_u64().expect("lavapipe reports its width");
+        let quick = stats["quick_kernels"].as_bool().expect("lavapipe reports its kernels");
+        let width = if quick { glint_gpu::quick_compile_width() } else { glint_gpu::LAVAPIPE_WIDTH };
+        assert_eq!(bits.to_string(), width, "the width of {} kernels", if quick { "quick" } else { "optimised" });
+        (std::fs::read(out).unwrap(), quick, bits)
     };
-    let (quick, was_quick) = render(Some("a"), None, "96", "1");
+    let (quick, was_quick, quick_bits) = render(Some("a"), None, "96", "1");
     assert!(was_quick, "a first 96x96 render compiled optimised kernels");
-    let (optimised, was_quick) = render(Some("a"), None, "96", "1");
+    let (optimised, was_quick, _) = render(Some("a"), None, "96", "1");
     assert!(!was_quick, "a second render of the scene compiled quick kernels");
     assert!(quick == optimised, "quick kernels changed the image");
+    // Each width's kernels in its own cache; the record of rendered scenes in
+    // the cache of the width for optimised kernels.
+    let widths = |home: &str| {
+        let mut names: Vec<String> = std::fs::read_dir(dir.path().join(home).join("glint")).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+        names.sort();
+        names
+    };
+    let mut expected = vec![format!("lavapipe-{}", glint_gpu::LAVAPIPE_WIDTH), format!("lavapipe-{quick_bits}")];
+    expected.dedup();
+    assert_eq!(widths("a"), expected);
     assert!(render(None, None, "96", "1").1, "without a shader cache a scene rendered before compiled optimised kernels");
     assert!(!render(Some("b"), Some(""), "96", "1").1, "an empty GALLIVM_PERF did not keep the optimised kernels");
     // Just over the limit in samples, not in pixels.

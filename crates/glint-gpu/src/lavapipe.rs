@@ -3,6 +3,7 @@
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The variable by which lavapipe's compiler (llvmpipe) picks its SIMD width.
 pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
@@ -25,6 +26,16 @@ pub const QUICK_COMPILE_FLAG: &str = "nopt";
 /// in running: measured on the SPD scenes, the break-even of a cold shaded
 /// render lies near 520,000 eye rays (docs/performance.md, "Quick kernels").
 pub const QUICK_COMPILE_MAX_SAMPLES: u64 = 400_000;
+/// The width quick kernels are compiled at on a CPU with 256-bit vectors
+/// (AVX2), unless the environment chooses one: without LLVM's passes the
+/// compile grows little with the width, and a cold first render takes 5–15 %
+/// less time than at [`LAVAPIPE_WIDTH`] (docs/performance.md, 2026-12-05).
+const QUICK_COMPILE_WIDTH: &str = "256";
+
+/// `prepare_lavapipe` chose the width, and the shader cache by it, for the
+/// environment chose neither: `compile_for_samples` may choose again.
+static WIDTH_CHOSEN: AtomicBool = AtomicBool::new(false);
+static CACHE_CHOSEN: AtomicBool = AtomicBool::new(false);
 
 /// Asks lavapipe for [`LAVAPIPE_WIDTH`]-bit vectors unless the environment
 /// already chooses a width, and gives each width its own shader cache unless
@@ -39,30 +50,73 @@ pub unsafe fn prepare_lavapipe() {
     let width = std::env::var_os(LAVAPIPE_WIDTH_ENV).unwrap_or_else(|| {
         // SAFETY: the caller guarantees no other thread reads the environment.
         unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, LAVAPIPE_WIDTH) };
+        WIDTH_CHOSEN.store(true, Ordering::Relaxed);
         LAVAPIPE_WIDTH.into()
     });
     if std::env::var_os(SHADER_CACHE_ENV).is_none() {
-        let home = |name| std::env::var_os(name).filter(|v| !v.is_empty());
-        if let Some(dir) = shader_cache_dir(&width, home("XDG_CACHE_HOME"), home("HOME")) {
-            // SAFETY: as above.
-            unsafe { std::env::set_var(SHADER_CACHE_ENV, dir) };
-        }
+        // SAFETY: as above.
+        unsafe { cache_by_width(&width) };
     }
+}
+
+/// Points Mesa's shader cache at the directory for `width`, when there is a
+/// cache home to put it in.
+///
+/// # Safety
+/// As [`prepare_lavapipe`].
+unsafe fn cache_by_width(width: &OsString) {
+    let home = |name| std::env::var_os(name).filter(|v| !v.is_empty());
+    if let Some(dir) = shader_cache_dir(width, home("XDG_CACHE_HOME"), home("HOME")) {
+        // SAFETY: the caller guarantees no other thread reads the environment.
+        unsafe { std::env::set_var(SHADER_CACHE_ENV, dir) };
+        CACHE_CHOSEN.store(true, Ordering::Relaxed);
+    }
+}
+
+/// The width quick kernels are compiled at on this CPU, unless the
+/// environment chooses one: [`QUICK_COMPILE_WIDTH`] where it runs 256-bit
+/// vectors natively (AVX2), else [`LAVAPIPE_WIDTH`].
+pub fn quick_compile_width() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    let wide = std::arch::is_x86_feature_detected!("avx2");
+    #[cfg(not(target_arch = "x86_64"))]
+    let wide = false;
+    if wide { QUICK_COMPILE_WIDTH } else { LAVAPIPE_WIDTH }
 }
 
 /// Asks lavapipe to compile without LLVM's optimisation passes when a command
 /// renders `samples` samples in all of a scene not rendered before
 /// ([`quick_compile_pays`]), unless the environment sets `GALLIVM_PERF` (set
-/// empty, it keeps the optimised kernels). Lavapipe reads the flags when the
-/// first device is made.
+/// empty, it keeps the optimised kernels), and then at
+/// [`quick_compile_width`] unless the environment chose a width, with the
+/// shader cache of that width. Lavapipe reads the flags and
+/// the width when the first device is made.
 ///
 /// # Safety
-/// Changes the process environment: call it before any other thread runs.
+/// Changes the process environment: call it after [`prepare_lavapipe`] and
+/// before any other thread runs.
 pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
-    if std::env::var_os(LAVAPIPE_PERF_ENV).is_none() && quick_compile_pays(samples, rendered_before) {
-        // SAFETY: the caller guarantees no other thread reads the environment.
-        unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };
+    if std::env::var_os(LAVAPIPE_PERF_ENV).is_some() || !quick_compile_pays(samples, rendered_before) {
+        return;
     }
+    // SAFETY: the caller guarantees no other thread reads the environment.
+    unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };
+    if WIDTH_CHOSEN.load(Ordering::Relaxed) {
+        let width = quick_compile_width();
+        // SAFETY: as above.
+        unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, width) };
+        if CACHE_CHOSEN.load(Ordering::Relaxed) {
+            // SAFETY: as above.
+            unsafe { cache_by_width(&width.into()) };
+        }
+    }
+}
+
+/// The SIMD width of a lavapipe adapter's kernels, in bits, from its name
+/// ("llvmpipe (LLVM 15.0.6, 256 bits)").
+pub fn vector_bits(info: &wgpu::AdapterInfo) -> Option<u32> {
+    let name = info.name.strip_suffix(" bits)")?;
+    name[name.rfind(' ')? + 1..].parse().ok()
 }
 
 /// Whether a command of `samples` samples is better served by quick kernels:
@@ -192,6 +246,14 @@ mod tests {
         let none = RenderedScenes { dir: None };
         none.insert(&a);
         assert!(!none.contains(&a), "without a shader cache nothing is remembered");
+    }
+
+    #[test]
+    fn reads_the_vector_width_from_the_adapter_name() {
+        let info = |name: &str| wgpu::AdapterInfo { name: name.into(), ..wgpu::AdapterInfo::new(wgpu::DeviceType::Cpu, wgpu::Backend::Vulkan) };
+        assert_eq!(vector_bits(&info("llvmpipe (LLVM 15.0.6, 256 bits)")), Some(256));
+        assert_eq!(vector_bits(&info("llvmpipe (LLVM 19.1.7, 128 bits)")), Some(128));
+        assert_eq!(vector_bits(&info("NVIDIA GeForce RTX 4090")), None);
     }
 
     #[test]
