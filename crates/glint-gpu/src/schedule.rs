@@ -9,11 +9,15 @@ use std::time::Duration;
 pub const BATCH_TARGET: Duration = Duration::from_millis(150);
 /// The target of an interactive render: the UI must stay responsive.
 pub const INTERACTIVE_TARGET: Duration = Duration::from_millis(30);
-/// The target of the viewer's first image of a scene or size, before which
-/// there is nothing to interact with: longer bands, fewer frames. Each frame
-/// costs a repaint of the window, which on a software rasteriser takes as long
-/// as a short band, and the rasteriser shares the CPU with the ray tracer.
-pub const FIRST_IMAGE_TARGET: Duration = BATCH_TARGET;
+/// The target of the viewer's image of a new scene or size: longer bands,
+/// fewer frames. Each frame costs a repaint of the window, which on a software
+/// rasteriser takes as long as a short band, and the rasteriser shares the CPU
+/// with the ray tracer.
+pub const NEW_CANVAS_TARGET: Duration = BATCH_TARGET;
+/// The target of the viewer's very first image, before which the window shows
+/// nothing to interact with: longer still, so that a whole sample takes one or
+/// two bands after the one that measures the scene.
+pub const FIRST_IMAGE_TARGET: Duration = Duration::from_millis(300);
 
 /// Rows are traced in whole workgroups of this many.
 const TILE_ROWS: u32 = 8;
@@ -22,7 +26,8 @@ const TILE_ROWS: u32 = 8;
 const FIRST_BAND_PIXELS: u32 = 64 * 512;
 
 /// Sizes bands from the time the last one took: towards the target in
-/// proportion, growing at most twofold per band and shrinking at once.
+/// proportion, growing at most twofold per band (at once, for the viewer's
+/// first image) and shrinking at once.
 #[derive(Debug, Clone, Copy)]
 pub struct BandScheduler {
     target: Duration,
@@ -31,6 +36,8 @@ pub struct BandScheduler {
     /// The next band recorded also waited for its kernel's compile (lavapipe
     /// compiles a kernel at its first dispatch), so it says nothing of a band.
     compiling: bool,
+    /// The next band may be sized to the target whatever the last one was.
+    grow_at_once: bool,
 }
 
 impl BandScheduler {
@@ -39,19 +46,30 @@ impl BandScheduler {
     /// not learnt from, and so starting larger (a first band learnt from
     /// would shrink to one workgroup of rows and take many bands to regrow).
     pub const fn before_compile(target: Duration) -> Self {
-        Self { target, pixels: FIRST_BAND_PIXELS, compiling: true }
+        Self { target, pixels: FIRST_BAND_PIXELS, compiling: true, grow_at_once: false }
     }
 
-    /// The bands of the viewer's first image on a new canvas.
+    /// The bands of the viewer's image on a new canvas.
+    pub const fn new_canvas() -> Self {
+        Self::before_compile(NEW_CANVAS_TARGET)
+    }
+
+    /// The bands of the viewer's first image, whose kernel was compiled while
+    /// the window started (the viewer's warm-up): the first band measures the
+    /// scene, and the next is sized from it to the target at once. (Had the
+    /// first band waited for a compile after all, the next would be small and
+    /// the one after it sized right.)
     pub const fn first_image() -> Self {
-        Self::before_compile(FIRST_IMAGE_TARGET)
+        Self { target: FIRST_IMAGE_TARGET, pixels: FIRST_BAND_PIXELS, compiling: false, grow_at_once: true }
     }
 
-    /// Aims the bands from now on at `target`, starting from what was learnt;
-    /// at the target they already have, it changes nothing.
+    /// Aims the bands from now on at `target`, starting from what was learnt,
+    /// growing twofold at most; at the target they already have, it changes
+    /// only that.
     pub fn retarget(&mut self, target: Duration) {
         self.pixels = (f64::from(self.pixels) * target.as_secs_f64() / self.target.as_secs_f64()) as u32;
         self.target = target;
+        self.grow_at_once = false;
     }
 
     /// The rows of the next band of an image `width` wide with `left` rows to
@@ -69,7 +87,8 @@ impl BandScheduler {
         }
         let pixels = f64::from(rows) * f64::from(width);
         let ideal = pixels * self.target.as_secs_f64() / took.as_secs_f64().max(1e-6);
-        let next = ideal.min(f64::from(self.pixels) * 2.0).min(f64::from(u32::MAX));
+        let growth = if self.grow_at_once { f64::INFINITY } else { 2.0 };
+        let next = ideal.min(f64::from(self.pixels) * growth).min(f64::from(u32::MAX));
         self.pixels = (next as u32).max(TILE_ROWS * width.max(1));
     }
 }
@@ -107,8 +126,8 @@ mod tests {
     }
 
     #[test]
-    fn the_first_image_starts_larger_aims_longer_and_is_retargeted_at_once() {
-        let mut s = BandScheduler::first_image();
+    fn a_new_canvas_starts_larger_aims_longer_and_is_retargeted_at_once() {
+        let mut s = BandScheduler::new_canvas();
         let first = s.rows(WIDTH, 10_000);
         assert_eq!(first, FIRST_BAND_PIXELS / WIDTH);
         s.record(WIDTH, first, Duration::from_secs(1));
@@ -120,6 +139,22 @@ mod tests {
         assert!((288..=304).contains(&s.rows(WIDTH, 100_000)), "150 ms at 0.5 ms a row");
         s.retarget(INTERACTIVE_TARGET);
         assert!((56..=64).contains(&s.rows(WIDTH, 100_000)), "30 ms at 0.5 ms a row, from the next band on");
+    }
+
+    #[test]
+    fn the_first_image_learns_from_its_first_band_and_grows_to_the_target_at_once() {
+        let mut s = BandScheduler::first_image();
+        let first = s.rows(WIDTH, 10_000);
+        assert_eq!(first, FIRST_BAND_PIXELS / WIDTH);
+        s.record(WIDTH, first, Duration::from_micros(500) * first);
+        let rows = s.rows(WIDTH, 10_000);
+        assert!((592..=600).contains(&rows), "300 ms at 0.5 ms a row is 600 rows, got {rows}");
+        assert_eq!(s.rows(WIDTH, 400), 400, "the rest of the sample in one band");
+
+        s.retarget(INTERACTIVE_TARGET);
+        let pixels = s.pixels;
+        s.record(WIDTH, s.rows(WIDTH, 10_000), Duration::from_micros(1));
+        assert_eq!(s.pixels, 2 * pixels, "once retargeted, an instant band only doubles the next");
     }
 
     #[test]

@@ -137,22 +137,6 @@ pub struct Accumulation {
     pub rays_per_second: f64,
 }
 
-impl Default for Accumulation {
-    fn default() -> Self {
-        Self {
-            samples: 0,
-            next_row: 0,
-            rows_left: None,
-            bands: BandScheduler::first_image(),
-            in_flight: Arc::new(AtomicUsize::new(0)),
-            timing: Arc::new(Mutex::new(BandTiming::default())),
-            presented: false,
-            rays: VecDeque::new(),
-            rays_per_second: 0.0,
-        }
-    }
-}
-
 /// When bands finish, to estimate how long the device spends on one.
 #[derive(Default)]
 struct BandTiming {
@@ -174,6 +158,21 @@ pub enum Step {
 }
 
 impl Accumulation {
+    /// Nothing accumulated yet, in bands sized by `bands`.
+    pub fn new(bands: BandScheduler) -> Self {
+        Self {
+            samples: 0,
+            next_row: 0,
+            rows_left: None,
+            bands,
+            in_flight: Arc::new(AtomicUsize::new(0)),
+            timing: Arc::new(Mutex::new(BandTiming::default())),
+            presented: false,
+            rays: VecDeque::new(),
+            rays_per_second: 0.0,
+        }
+    }
+
     /// Starts over. The first sample clears each band before tracing it, so
     /// until it is done the rows below it still show the previous image.
     pub fn restart(&mut self) {

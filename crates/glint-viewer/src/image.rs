@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use egui::{Pos2, Rect, Vec2};
 use glam::Vec3;
+use glint_gpu::schedule::BandScheduler;
 use glint_gpu::{GpuError, PngBits};
 use glint_scene::gpu_types::{self, View};
 use glint_scene::Camera;
@@ -61,7 +62,7 @@ impl TracedImage {
             texture: None,
             preparing: false,
             failed_key: None,
-            acc: Accumulation::default(),
+            acc: Accumulation::new(BandScheduler::first_image()),
             dirty: false,
             represent: false,
             syncs: 0,
@@ -193,8 +194,11 @@ impl TracedImage {
             Some(id) => renderer.update_egui_texture_from_wgpu_texture(&self.device, &canvas.target.view, filter, id),
             None => self.texture = Some(renderer.register_native_texture(&self.device, &canvas.target.view, filter)),
         }
+        // Before the first canvas the window shows nothing, and the warm-up
+        // compiled its kernel: its bands can be long from the second on.
+        let bands = if self.canvas.is_none() { BandScheduler::first_image() } else { BandScheduler::new_canvas() };
         self.canvas = Some(canvas);
-        self.acc = Accumulation::default();
+        self.acc = Accumulation::new(bands);
         self.dirty = true;
     }
 
