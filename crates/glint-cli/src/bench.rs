@@ -7,6 +7,7 @@ use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer};
 use glint_scene::gpu_types::View;
+use glint_scene::specialization::{Specialization, PACKET_EYE_RAYS};
 
 use crate::{exit, Failure};
 
@@ -102,9 +103,11 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
 
 fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
     let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
-    let prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
+    let mut prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
+    let scene_kernels = prepared.buffers.specialization;
     // Device time per frame: tracing only, no resolve or read-back.
-    let time = |view: View| -> Result<(Duration, RayStats), Failure> {
+    let mut time = |view: View| -> Result<(Duration, RayStats), Failure> {
+        prepared.buffers.specialization = timed_kernels(scene_kernels, view);
         let options = RenderOptions { view, ..RenderOptions::default() };
         let mut stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
         let mut times = Vec::new();
@@ -133,6 +136,14 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         stats,
         nodes_per_primary_ray,
     })
+}
+
+/// The kernels a frame of `view` is timed with: those `glint render` compiles
+/// for a render of that view alone and of many eye rays (packets). A kernel for
+/// every view would time the other views' code too: in the depth view, each hit
+/// loaded the whole primitive for the views that shade it.
+fn timed_kernels(scene_kernels: Specialization, view: View) -> Specialization {
+    scene_kernels.for_views(&[view]).for_eye_rays(PACKET_EYE_RAYS)
 }
 
 fn mrays(rays: u64, time: Duration) -> f64 {
@@ -186,6 +197,18 @@ fn print(m: &Measurement, args: &BenchArgs) {
 
 #[cfg(test)]
 mod tests {
+    use glint_scene::gpu_types::View;
+    use glint_scene::specialization::Specialization;
+
+    #[test]
+    fn each_view_is_timed_with_the_kernel_a_render_of_it_alone_compiles() {
+        for view in [View::Depth, View::Shaded] {
+            let kernels = super::timed_kernels(Specialization::ALL.for_eye_rays(1), view);
+            assert_eq!(kernels.view, Some(view));
+            assert!(kernels.packets, "{view:?} is timed without packets");
+        }
+    }
+
     #[test]
     fn the_default_scenes_are_generated_or_in_the_repository() {
         let scenes = super::default_scenes();
