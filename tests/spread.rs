@@ -1,7 +1,8 @@
 //! The order of a dispatch's workgroups over a band (`lib/spread.wgsl`), run
 //! on the device: every workgroup gets a place of its own, and each of the
 //! runs of consecutive workgroups lavapipe deals its threads holds its share
-//! of every strip of the band, whatever the count.
+//! of every strip of the band, whatever the count; and a workgroup's
+//! invocations cover its pixels in 2×2 blocks, a SIMD group's lanes together.
 
 mod support;
 
@@ -22,10 +23,15 @@ fn main(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: 
 /// The place in the band, as a row-major workgroup index, of each workgroup
 /// of a dispatch of `groups`, in the order the driver numbers them.
 fn places(groups: [u32; 2]) -> Vec<u32> {
+    run_places(PLACES_KERNEL, groups, (groups[0] * groups[1]) as usize)
+}
+
+/// The `count` places `kernel`, with spread.wgsl, writes in a dispatch of `groups`.
+fn run_places(kernel: &str, groups: [u32; 2], count: usize) -> Vec<u32> {
     let gpu = support::gpu();
     let device = &gpu.device;
     let spread = std::fs::read_to_string(ShaderSource::source_dir().join("lib/spread.wgsl")).unwrap();
-    let source = format!("{}{spread}{PLACES_KERNEL}", wgsl_prelude());
+    let source = format!("{}{spread}{kernel}", wgsl_prelude());
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("spread"),
         source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -38,7 +44,6 @@ fn places(groups: [u32; 2]) -> Vec<u32> {
         compilation_options: Default::default(),
         cache: None,
     });
-    let count = (groups[0] * groups[1]) as usize;
     let bytes = (count * 4) as u64;
     let out = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: None,
@@ -114,6 +119,39 @@ fn every_threads_run_holds_its_share_of_every_strip() {
                     "thread {t} of {threads}, dispatch of {groups:?}: {per_strip:?} places per strip, not about {share}"
                 );
             }
+        }
+    }
+}
+
+/// The place in its workgroup, as a row-major index, of each invocation of a
+/// workgroup of `size`, in the order the driver numbers them.
+fn invocation_places(size: [u32; 2]) -> Vec<u32> {
+    let kernel = format!(
+        "@group(0) @binding(0) var<storage, read_write> places: array<u32>;\n\
+         @compute @workgroup_size({}, {})\n\
+         fn main(@builtin(local_invocation_id) lid: vec3<u32>) {{\n\
+             let size = vec2<u32>({}u, {}u);\n\
+             let place = spread_invocation(lid, size);\n\
+             places[lid.y * size.x + lid.x] = place.y * size.x + place.x;\n\
+         }}",
+        size[0], size[1], size[0], size[1]
+    );
+    run_places(&kernel, [1, 1], (size[0] * size[1]) as usize)
+}
+
+#[test]
+fn every_four_consecutive_invocations_trace_a_2x2_block() {
+    use glint_scene::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
+    for size in [[BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT], [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT], [2, 2], [6, 4]] {
+        let places = invocation_places(size);
+        let mut seen = places.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..size[0] * size[1]).collect::<Vec<_>>(), "a workgroup of {size:?}: not every place once");
+        for (g, group) in places.chunks(4).enumerate() {
+            let (xs, ys): (Vec<u32>, Vec<u32>) = group.iter().map(|p| (p % size[0], p / size[0])).unzip();
+            let (x, y) = (xs[0], ys[0]);
+            assert_eq!(xs, [x, x + 1, x, x + 1], "group {g} of a workgroup of {size:?}: {group:?}");
+            assert_eq!(ys, [y, y, y + 1, y + 1], "group {g} of a workgroup of {size:?}: {group:?}");
         }
     }
 }

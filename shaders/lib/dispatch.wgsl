@@ -31,7 +31,7 @@ fn dispatch_view() -> u32 {
 // the top-left pixel of its block for a kernel whose invocations trace blocks
 // of `side`×`side` pixels. `size` is the kernel's workgroup size.
 fn band_pixel(wid: vec3<u32>, lid: vec3<u32>, groups: vec3<u32>, size: vec2<u32>, side: u32) -> vec2<u32> {
-    return side * (spread_workgroup(wid, groups) * size + lid.xy) + dispatch.origin;
+    return side * (spread_workgroup(wid, groups) * size + spread_invocation(lid, size)) + dispatch.origin;
 }
 
 // Pixel k of the 2×2 block whose top-left pixel is `corner`, left to right,

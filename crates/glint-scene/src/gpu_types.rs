@@ -160,6 +160,10 @@ shared_constants! {
 
 const _: () = assert!(STAT_SLOTS.is_power_of_two(), "flush_ray_counts takes the slot with a mask");
 const _: () = assert!(SPREAD_STRIPS.is_power_of_two(), "spread_workgroup divides by it with a shift");
+const _: () = assert!(
+    BAND_WORKGROUP_WIDTH % 2 == 0 && BAND_WORKGROUP_HEIGHT % 2 == 0 && PRIMARY_WORKGROUP_HEIGHT % 2 == 0,
+    "spread_invocation deals a workgroup's places in 2x2 blocks"
+);
 const _: () = assert!(SCENE_TEXTURE_WIDTH.is_power_of_two(), "texel_of divides by it with a shift");
 
 /// Bytes of a texel of the scene's textures (RGBA, 32 bits a channel).
