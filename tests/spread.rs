@@ -7,7 +7,9 @@
 mod support;
 
 use glint_gpu::shaders::ShaderSource;
-use glint_scene::gpu_types::{SPREAD_STRIPS, wgsl_prelude};
+use glint_scene::gpu_types::{
+    BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT, SPREAD_STRIPS, wgsl_prelude,
+};
 use wgpu::util::DeviceExt;
 
 const PLACES_KERNEL: &str = r#"
@@ -80,13 +82,18 @@ fn run_places(kernel: &str, groups: [u32; 2], count: usize) -> Vec<u32> {
 /// either side of a multiple of the strips, a whole 512×512 image.
 const SHAPES: [[u32; 2]; 8] = [[1, 1], [5, 1], [64, 1], [7, 5], [13, 17], [64, 3], [33, 31], [64, 64]];
 
+/// Asserts that `places` holds each of 0..places.len() once.
+fn assert_each_place_once(places: &[u32], what: &str) {
+    let mut seen = places.to_vec();
+    seen.sort_unstable();
+    let all: Vec<u32> = (0..places.len() as u32).collect();
+    assert_eq!(seen, all, "{what}: not every place once");
+}
+
 #[test]
 fn every_workgroup_has_a_place_of_its_own() {
     for groups in SHAPES {
-        let mut seen = places(groups);
-        seen.sort_unstable();
-        let all: Vec<u32> = (0..groups[0] * groups[1]).collect();
-        assert_eq!(seen, all, "a dispatch of {groups:?} workgroups");
+        assert_each_place_once(&places(groups), &format!("a dispatch of {groups:?} workgroups"));
     }
 }
 
@@ -141,12 +148,9 @@ fn invocation_places(size: [u32; 2]) -> Vec<u32> {
 
 #[test]
 fn every_four_consecutive_invocations_trace_a_2x2_block() {
-    use glint_scene::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
     for size in [[BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT], [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT], [2, 2], [6, 4]] {
         let places = invocation_places(size);
-        let mut seen = places.clone();
-        seen.sort_unstable();
-        assert_eq!(seen, (0..size[0] * size[1]).collect::<Vec<_>>(), "a workgroup of {size:?}: not every place once");
+        assert_each_place_once(&places, &format!("a workgroup of {size:?}"));
         for (g, group) in places.chunks(4).enumerate() {
             let (xs, ys): (Vec<u32>, Vec<u32>) = group.iter().map(|p| (p % size[0], p / size[0])).unzip();
             let (x, y) = (xs[0], ys[0]);

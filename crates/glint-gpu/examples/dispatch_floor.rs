@@ -15,11 +15,11 @@ const TIMED: usize = 41;
 /// (name, body of the kernel, side of the block of pixels an invocation covers)
 const KERNELS: &[(&str, &str, u32)] = &[
     ("nothing", "if gid.x == 123456u { out[0] = vec4<f32>(1.0); }", 1),
-    ("write vec4", "out[gid.y * 512u + gid.x] = vec4<f32>(f32(gid.x), 0.0, 0.0, 1.0);", 1),
-    ("write f32 of a vec4", "out[gid.y * 512u + gid.x].x = f32(gid.x);", 1),
-    ("eye ray, write vec4", "let d = normalize(vec3<f32>(vec2<f32>(gid.xy) / 512.0 - 0.5, -1.0)); out[gid.y * 512u + gid.x] = vec4<f32>(d, 1.0);", 1),
+    ("write vec4", "out[gid.y * SIDE + gid.x] = vec4<f32>(f32(gid.x), 0.0, 0.0, 1.0);", 1),
+    ("write f32 of a vec4", "out[gid.y * SIDE + gid.x].x = f32(gid.x);", 1),
+    ("eye ray, write vec4", "let d = normalize(vec3<f32>(vec2<f32>(gid.xy) / f32(SIDE) - 0.5, -1.0)); out[gid.y * SIDE + gid.x] = vec4<f32>(d, 1.0);", 1),
     ("2x2: nothing", "if gid.x == 123456u { out[0] = vec4<f32>(1.0); }", 2),
-    ("2x2: write 4 vec4", "for (var k = 0u; k < 4u; k++) { out[(2u * gid.y + (k >> 1u)) * 512u + 2u * gid.x + (k & 1u)] = vec4<f32>(f32(gid.x), 0.0, 0.0, 1.0); }", 2),
+    ("2x2: write 4 vec4", "for (var k = 0u; k < 4u; k++) { out[(2u * gid.y + (k >> 1u)) * SIDE + 2u * gid.x + (k & 1u)] = vec4<f32>(f32(gid.x), 0.0, 0.0, 1.0); }", 2),
     ("4x4: nothing", "if gid.x == 123456u { out[0] = vec4<f32>(1.0); }", 4),
 ];
 
@@ -35,7 +35,8 @@ fn main() {
     });
     for (name, body, side) in KERNELS {
         let source = format!(
-            "@group(0) @binding(0) var<storage, read_write> out: array<vec4<f32>>;\n\
+            "const SIDE: u32 = {SIDE}u;\n\
+             @group(0) @binding(0) var<storage, read_write> out: array<vec4<f32>>;\n\
              @compute @workgroup_size(8, 4) fn main(@builtin(global_invocation_id) gid: vec3<u32>) {{ {body} }}"
         );
         let descriptor = wgpu::ShaderModuleDescriptor { label: Some(name), source: wgpu::ShaderSource::Wgsl(source.into()) };
