@@ -9,6 +9,10 @@ For each scene, alternating the two renderers:
   * warm primary rays: `glint bench FILE --json` (median frame of the depth
     view, one eye ray per pixel) against Mitsuba's `aov` depth integrator,
     median of as many renders after one warm-up render (JIT) in one process;
+    the fastest of --warm-runs rounds, each round one process of each,
+    alternating, so that a drift of the VM's speed between the two
+    measurements (seen here: one renderer's warm frame 1.5-2x slower from one
+    minute to the next) does not pass for a difference between them;
   * cold process (the fastest of --cold-runs rounds, each round one process
     of every kind): process start to image written with no shader or kernel
     cache — Glint with MESA_SHADER_CACHE_DISABLE=true, Mitsuba with an empty
@@ -157,6 +161,8 @@ def main():
     parser.add_argument("--glint", default=os.path.join(REPO, "target", "release", "glint"))
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--frames", type=int, default=5)
+    parser.add_argument("--warm-runs", type=int, default=3,
+                        help="rounds of warm processes (one of each renderer per round); the fastest of each counts")
     parser.add_argument("--no-cold", action="store_true", help="skip the cold-process measurements")
     parser.add_argument("--cold-runs", type=int, default=3,
                         help="rounds of cold processes (one of each kind per round); the fastest of each kind counts")
@@ -185,7 +191,7 @@ def main():
             subprocess.run([args.glint, "spd", name, "-o", path], check=True)
             files.append((name, path))
 
-    print(f"{args.size}x{args.size}, median of {args.frames} frames; times in ms; "
+    print(f"{args.size}x{args.size}, warm: median of {args.frames} frames, fastest of {args.warm_runs} rounds; times in ms; "
           "each ratio is Mitsuba's time over Glint's (> 1: Glint faster)", flush=True)
     header = "| scene | Glint primary | Mitsuba depth | ratio |"
     rule = "|---|---:|---:|---:|"
@@ -198,8 +204,11 @@ def main():
     print(header)
     print(rule)
     for name, path in files:
-        glint = glint_warm(args.glint, path, args.size, args.frames)
-        mitsuba = mitsuba_run(path, args.size, "warm", "depth", args.frames, work)["median"]
+        rounds = [(glint_warm(args.glint, path, args.size, args.frames),
+                   mitsuba_run(path, args.size, "warm", "depth", args.frames, work)["median"])
+                  for _ in range(args.warm_runs)]
+        glint = min(g for g, _ in rounds)
+        mitsuba = min(m for _, m in rounds)
         row = f"| {name} | {glint * 1e3:.1f} | {mitsuba * 1e3:.1f} | {mitsuba / glint:.2f} |"
         if not args.no_cold:
             measures = {
