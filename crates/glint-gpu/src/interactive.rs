@@ -301,11 +301,10 @@ impl RayCounter {
         if let Err(e) = result {
             return Some(Err(GpuError::Runtime(e.to_string())));
         }
-        let mut stats = RayStats::default();
-        match self.buffer.get_mapped_range(..) {
-            Ok(bytes) => stats.add_slots(&bytemuck::pod_collect_to_vec(&bytes)),
+        let stats = match self.buffer.get_mapped_range(..) {
+            Ok(bytes) => RayStats::from_slots(&bytemuck::pod_collect_to_vec(&bytes)),
             Err(e) => return Some(Err(GpuError::Runtime(e.to_string()))),
-        }
+        };
         self.buffer.unmap();
         Some(Ok(stats))
     }

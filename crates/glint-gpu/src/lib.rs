@@ -32,7 +32,8 @@ pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
     OutputPathError, PngBits,
 };
-pub use renderer::{RayStats, RenderOptions, Renderer, SceneBuffers, ToneMap};
+pub use glint_scene::RayStats;
+pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
 pub use sink::{ImageSink, StagedImage};
 pub use tiles::Region;
 

@@ -5,10 +5,10 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use glint_scene::gpu_types::{
-    DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, STAT_EYE_HIT, STAT_EYE_MISS, STAT_REFLECT,
-    STAT_REFRACT, STAT_SHADOW, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
+    DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
 };
 use glint_scene::specialization::Specialization;
+use glint_scene::RayStats;
 use wgpu::util::DeviceExt;
 
 use crate::pipelines::Pipelines;
@@ -55,47 +55,6 @@ impl Default for RenderOptions {
             tone_map: ToneMap::Clamp,
             view_scale: 1.0,
             band_rows: None,
-        }
-    }
-}
-
-/// Rays traced, by kind.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct RayStats {
-    pub eye_hit: u64,
-    pub eye_miss: u64,
-    pub shadow: u64,
-    pub reflect: u64,
-    pub refract: u64,
-}
-
-impl RayStats {
-    pub fn total(&self) -> u64 {
-        self.eye_hit + self.eye_miss + self.shadow + self.reflect + self.refract
-    }
-
-    /// Adds the counters of every slot of a stats buffer read back.
-    pub(crate) fn add_slots(&mut self, counts: &[u32]) {
-        for slot in counts.chunks_exact(STAT_COUNT as usize) {
-            let count = |kind: u32| u64::from(slot[kind as usize]);
-            self.eye_hit += count(STAT_EYE_HIT);
-            self.eye_miss += count(STAT_EYE_MISS);
-            self.shadow += count(STAT_SHADOW);
-            self.reflect += count(STAT_REFLECT);
-            self.refract += count(STAT_REFRACT);
-        }
-    }
-}
-
-impl std::ops::Add for RayStats {
-    type Output = RayStats;
-    fn add(self, o: RayStats) -> RayStats {
-        RayStats {
-            eye_hit: self.eye_hit + o.eye_hit,
-            eye_miss: self.eye_miss + o.eye_miss,
-            shadow: self.shadow + o.shadow,
-            reflect: self.reflect + o.reflect,
-            refract: self.refract + o.refract,
         }
     }
 }
@@ -456,7 +415,7 @@ impl Renderer {
             let start = Instant::now();
             self.queue.submit([encoder.finish()]);
             let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&self.read(&stats_readback)?);
-            stats.add_slots(&counts);
+            stats += RayStats::from_slots(&counts);
             y += band;
             progress(u64::from(y - tile.y0) * u64::from(width));
             if options.band_rows.is_none() {

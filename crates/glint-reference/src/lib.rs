@@ -24,43 +24,13 @@ mod ray_tree;
 mod tests;
 
 use glam::DVec3;
+pub use glint_scene::RayStats;
 use glint_scene::{LightKind, Material, Scene, ShadowMode, SpecularModel};
 
 use geometry::Geom;
 pub use random::random_scene;
 use ray_tree::{Observer, Pending, Signature};
 pub use ray_tree::{Occluder, RayKind, RefRay, RefTree, ShadowRay};
-
-/// Ray counts, as the GPU's statistics buffer counts them.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct RayStats {
-    /// Eye rays (depth 1) that hit something.
-    pub eye_hit: u64,
-    /// Eye rays that hit nothing.
-    pub eye_miss: u64,
-    /// Shadow rays actually cast.
-    pub shadow: u64,
-    /// Reflected rays traced.
-    pub reflect: u64,
-    /// Refracted rays traced.
-    pub refract: u64,
-}
-
-impl RayStats {
-    pub fn total(&self) -> u64 {
-        self.eye_hit + self.eye_miss + self.shadow + self.reflect + self.refract
-    }
-}
-
-impl std::ops::AddAssign for RayStats {
-    fn add_assign(&mut self, o: RayStats) {
-        self.eye_hit += o.eye_hit;
-        self.eye_miss += o.eye_miss;
-        self.shadow += o.shadow;
-        self.reflect += o.reflect;
-        self.refract += o.refract;
-    }
-}
 
 /// A rendered image: one eye ray through each pixel centre, row-major from the
 /// top-left pixel (index j·width + i).

@@ -14,6 +14,7 @@ mod material;
 pub mod nff;
 pub mod obj;
 pub mod polygon_split;
+mod ray_stats;
 mod scene;
 mod shape;
 pub mod spd;
@@ -31,6 +32,7 @@ pub use camera::{Basis, Camera, Projection, Ray};
 pub use error::{LoadError, Location};
 pub use light::{Attenuation, Light, LightKind};
 pub use material::{Checker, Material, SpecularModel};
+pub use ray_stats::RayStats;
 pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
 pub use shape::{plane_axes, Shape, ShapeProblem};
 
