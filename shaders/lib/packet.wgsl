@@ -59,12 +59,34 @@ fn packet(rays: Rays4) -> Packet {
 // corners are `near` and `far` (each ray's as `slab_entry` gives it, t_max the
 // largest of theirs), or MISS when none of them enters it. Rounding is monotonic,
 // so a product of the extreme operands bounds each ray's own product.
+// `slab_entry`'s arithmetic, but with min and max as a compare and a select:
+// lavapipe makes WGSL's min and max NaN-safe (a compare for NaN and a blend
+// beside each min or max instruction), and nothing here is NaN: the products
+// on an axis that bounds are finite, the others are replaced by ±MISS.
 fn packet_entry(b: PacketBounds, near: vec3<f32>, far: vec3<f32>, t_max: f32) -> f32 {
     let d_near = near - b.near_origin;
     let d_far = far - b.far_origin;
-    let t_near = select(vec3<f32>(-MISS), min(d_near * b.inv_lo, d_near * b.inv_hi), b.bounded);
-    let t_far = select(vec3<f32>(MISS), max(d_far * b.inv_lo, d_far * b.inv_hi), b.bounded);
-    return slab_entry(t_near, t_far, t_max);
+    let t_near = select(vec3<f32>(-MISS), lesser3(d_near * b.inv_lo, d_near * b.inv_hi), b.bounded);
+    let t_far = select(vec3<f32>(MISS), greater3(d_far * b.inv_lo, d_far * b.inv_hi), b.bounded);
+    let entry = greater(greater(t_near.x, t_near.y), t_near.z);
+    let exit = lesser(lesser(t_far.x, t_far.y), t_far.z);
+    return select(MISS, greater(entry, 0.0), entry <= exit && exit >= 0.0 && entry <= t_max);
+}
+
+fn lesser(a: f32, b: f32) -> f32 {
+    return select(b, a, a < b);
+}
+
+fn greater(a: f32, b: f32) -> f32 {
+    return select(b, a, a > b);
+}
+
+fn lesser3(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    return select(b, a, a < b);
+}
+
+fn greater3(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    return select(b, a, a > b);
 }
 
 // `test_prims` for a packet's closest hits: primitive i against its four rays.
@@ -108,11 +130,11 @@ fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
 }
 
 fn min4(v: vec4<f32>) -> f32 {
-    return min(min(v.x, v.y), min(v.z, v.w));
+    return lesser(lesser(v.x, v.y), lesser(v.z, v.w));
 }
 
 fn max4(v: vec4<f32>) -> f32 {
-    return max(max(v.x, v.y), max(v.z, v.w));
+    return greater(greater(v.x, v.y), greater(v.z, v.w));
 }
 
 // `traverse` for the closest hits of a packet's rays in (0, MISS): the same
