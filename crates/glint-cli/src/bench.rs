@@ -74,10 +74,14 @@ struct Measurement {
 
 pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
-    if args.cold {
-        // As a first render of each scene compiles them. SAFETY: no thread has been started yet.
-        unsafe { glint_gpu::compile_for_samples(u64::from(args.width) * u64::from(args.height), false) };
-    }
+    // Cold, the kernels a first render of each scene compiles; warm, those of
+    // a long render, whose time the warm frames stand for.
+    let (samples, rendered_before) = match args.cold {
+        true => (u64::from(args.width) * u64::from(args.height), false),
+        false => (glint_gpu::LONG_RENDER_MIN_SAMPLES, true),
+    };
+    // SAFETY: no thread has been started yet.
+    unsafe { glint_gpu::compile_for_samples(samples, rendered_before) };
     let gpu = Gpu::new()?;
     if args.cold {
         return crate::bench_cold::run(&gpu, &scenes, args.width, args.height, args.json);
@@ -94,9 +98,11 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
             "scene", "prims", "build ms", "nodes", "GPU bytes", "B/prim", "primary ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
         );
     }
+    // lavapipe's SIMD width, which the kernels' speed depends on.
+    let vector_bits = glint_gpu::vector_bits(&gpu.info());
     for path in &scenes {
         let m = measure(&renderer, path, args, acceleration)?;
-        print(&m, args);
+        print(&m, args, vector_bits);
     }
     Ok(())
 }
@@ -150,7 +156,7 @@ fn mrays(rays: u64, time: Duration) -> f64 {
     rays as f64 / time.as_secs_f64() / 1e6
 }
 
-fn print(m: &Measurement, args: &BenchArgs) {
+fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
     let pixels = u64::from(args.width) * u64::from(args.height);
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     if args.json {
@@ -174,6 +180,7 @@ fn print(m: &Measurement, args: &BenchArgs) {
             "reflect": m.stats.reflect,
             "refract": m.stats.refract,
             "rays": m.stats.total(),
+            "vector_bits": vector_bits,
         });
         println!("{value}");
     } else {

@@ -140,8 +140,9 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         let stats: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--stats --json prints JSON");
         let bits = stats["vector_bits"].as_u64().expect("lavapipe reports its width");
         let quick = stats["quick_kernels"].as_bool().expect("lavapipe reports its kernels");
-        let width = if quick { glint_gpu::quick_compile_width() } else { glint_gpu::LAVAPIPE_WIDTH };
-        assert_eq!(bits.to_string(), width, "the width of {} kernels", if quick { "quick" } else { "optimised" });
+        let samples = size.parse::<u64>().unwrap().pow(2) * spp.parse::<u64>().unwrap();
+        let width = glint_gpu::width_for(samples, quick);
+        assert_eq!(bits.to_string(), width, "the width of {} kernels for {samples} samples", if quick { "quick" } else { "optimised" });
         (std::fs::read(out).unwrap(), quick, bits)
     };
     let (quick, was_quick, quick_bits) = render(Some("a"), None, "96", "1");
@@ -164,6 +165,24 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
     // Just over the limit in samples, not in pixels.
     let side = (glint_gpu::QUICK_COMPILE_MAX_SAMPLES / 16).isqrt() + 1;
     assert!(!render(Some("c"), None, &side.to_string(), "16").1, "a render of {} samples compiled quick kernels", side * side * 16);
+    // A long render: optimised kernels at the wide width (the render checks
+    // the width), in that width's cache.
+    let spp = glint_gpu::LONG_RENDER_MIN_SAMPLES.div_ceil(48 * 48);
+    let (_, was_quick, long_bits) = render(Some("d"), None, "48", &spp.to_string());
+    assert!(!was_quick, "a long render compiled quick kernels");
+    assert!(widths("d").contains(&format!("lavapipe-{long_bits}")), "no cache of the long render's width: {:?}", widths("d"));
+}
+
+/// `glint bench` times its warm frames with the kernels a long render runs,
+/// at the width Glint chooses for them, and says which.
+#[test]
+fn bench_times_the_kernels_of_a_long_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = glint_at_width(None, dir.path(), &["bench", "spd:tetra:1", "--width", "16", "--height", "16", "--frames", "1", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
+    let long_render = glint_gpu::width_for(glint_gpu::LONG_RENDER_MIN_SAMPLES, false);
+    assert_eq!(report["vector_bits"].to_string(), long_render, "{report}");
 }
 
 #[test]

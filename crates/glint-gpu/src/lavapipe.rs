@@ -7,11 +7,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The variable by which lavapipe's compiler (llvmpipe) picks its SIMD width.
 pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
-/// The width Glint asks lavapipe for, in bits. The kernels are mostly
-/// per-lane work (divergent loads, private stacks) that 8-wide vectors do not
-/// speed up: with 4 lanes they trace as fast, to the same bits, and the driver
-/// compiles them in half the time, which a first image waits for
-/// (docs/performance.md, "Cold start").
+/// The width Glint asks lavapipe for, in bits. The driver compiles optimised
+/// kernels 4 wide in about half the time it takes 8 wide, which a first image
+/// waits for (docs/performance.md, "Cold start"); 8 wide, they trace 10–25 %
+/// faster, to the same bits, which pays only in long renders
+/// ([`LONG_RENDER_MIN_SAMPLES`]).
 pub const LAVAPIPE_WIDTH: &str = "128";
 /// The variable naming the directory Mesa caches compiled shaders in.
 pub const SHADER_CACHE_ENV: &str = "MESA_SHADER_CACHE_DIR";
@@ -26,11 +26,18 @@ pub const QUICK_COMPILE_FLAG: &str = "nopt";
 /// in running: measured on the SPD scenes, the break-even of a cold shaded
 /// render lies near 520,000 eye rays (docs/performance.md, "Quick kernels").
 pub const QUICK_COMPILE_MAX_SAMPLES: u64 = 400_000;
-/// The width quick kernels are compiled at on a CPU with 256-bit vectors
-/// (AVX2), unless the environment chooses one: without LLVM's passes the
-/// compile grows little with the width, and a cold first render takes 5–15 %
-/// less time than at [`LAVAPIPE_WIDTH`] (docs/performance.md, 2026-12-05).
-const QUICK_COMPILE_WIDTH: &str = "256";
+/// The width of quick kernels and of long renders' kernels on a CPU with
+/// 256-bit vectors (AVX2), unless the environment chooses one. Without LLVM's
+/// passes the compile grows little with the width, and a cold first render
+/// takes 5–15 % less time than at [`LAVAPIPE_WIDTH`] (docs/performance.md,
+/// 2026-12-05); optimised kernels trace 10–25 % faster at it (2026-12-06).
+const WIDE_WIDTH: &str = "256";
+/// From this many samples on, a render's optimised kernels are compiled at
+/// [`wide_width`]: the longer compile is paid back from about 3 million
+/// samples (cold shaded renders of mount and teapot: 0.2–0.5 s slower at a
+/// million samples, 0.4–1.1 s faster at 8.4 million; docs/performance.md,
+/// 2026-12-06).
+pub const LONG_RENDER_MIN_SAMPLES: u64 = 4_000_000;
 
 /// `prepare_lavapipe` chose the width, and the shader cache by it, for the
 /// environment chose neither: `compile_for_samples` may choose again.
@@ -73,36 +80,42 @@ unsafe fn cache_by_width(width: &OsString) {
     }
 }
 
-/// The width quick kernels are compiled at on this CPU, unless the
-/// environment chooses one: [`QUICK_COMPILE_WIDTH`] where it runs 256-bit
-/// vectors natively (AVX2), else [`LAVAPIPE_WIDTH`].
-pub fn quick_compile_width() -> &'static str {
+/// [`WIDE_WIDTH`] where this CPU runs 256-bit vectors natively (AVX2), else
+/// [`LAVAPIPE_WIDTH`].
+pub fn wide_width() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     let wide = std::arch::is_x86_feature_detected!("avx2");
     #[cfg(not(target_arch = "x86_64"))]
     let wide = false;
-    if wide { QUICK_COMPILE_WIDTH } else { LAVAPIPE_WIDTH }
+    if wide { WIDE_WIDTH } else { LAVAPIPE_WIDTH }
 }
 
-/// Asks lavapipe to compile without LLVM's optimisation passes when a command
-/// renders `samples` samples in all of a scene not rendered before
-/// ([`quick_compile_pays`]), unless the environment sets `GALLIVM_PERF` (set
-/// empty, it keeps the optimised kernels), and then at
-/// [`quick_compile_width`] unless the environment chose a width, with the
-/// shader cache of that width. Lavapipe reads the flags and
-/// the width when the first device is made.
+/// The width Glint chooses for a command of `samples` samples whose kernels
+/// are quick or not: [`wide_width`] for quick kernels and long renders, else
+/// [`LAVAPIPE_WIDTH`].
+pub fn width_for(samples: u64, quick: bool) -> &'static str {
+    if quick || samples >= LONG_RENDER_MIN_SAMPLES { wide_width() } else { LAVAPIPE_WIDTH }
+}
+
+/// Chooses lavapipe's kernels for a command that renders `samples` samples in
+/// all: without LLVM's optimisation passes for a small render of a scene not
+/// rendered before ([`quick_compile_pays`]), unless the environment sets
+/// `GALLIVM_PERF` (set empty, it keeps the optimised kernels); and at
+/// [`width_for`] unless the environment chose a width, with the shader cache
+/// of that width. Lavapipe reads the flags and the width when the first
+/// device is made.
 ///
 /// # Safety
 /// Changes the process environment: call it after [`prepare_lavapipe`] and
 /// before any other thread runs.
 pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
-    if std::env::var_os(LAVAPIPE_PERF_ENV).is_some() || !quick_compile_pays(samples, rendered_before) {
-        return;
+    let quick = std::env::var_os(LAVAPIPE_PERF_ENV).is_none() && quick_compile_pays(samples, rendered_before);
+    if quick {
+        // SAFETY: the caller guarantees no other thread reads the environment.
+        unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };
     }
-    // SAFETY: the caller guarantees no other thread reads the environment.
-    unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };
     if WIDTH_CHOSEN.load(Ordering::Relaxed) {
-        let width = quick_compile_width();
+        let width = width_for(samples, quick);
         // SAFETY: as above.
         unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, width) };
         if CACHE_CHOSEN.load(Ordering::Relaxed) {
@@ -233,6 +246,14 @@ mod tests {
         assert!(!quick_compile_pays(QUICK_COMPILE_MAX_SAMPLES + 1, false));
         assert!(!quick_compile_pays(1024 * 1024, false));
         assert!(!quick_compile_pays(64 * 64, true));
+    }
+
+    #[test]
+    fn wide_kernels_for_quick_kernels_and_long_renders() {
+        assert_eq!(width_for(512 * 512, true), wide_width());
+        assert_eq!(width_for(512 * 512, false), LAVAPIPE_WIDTH);
+        assert_eq!(width_for(LONG_RENDER_MIN_SAMPLES - 1, false), LAVAPIPE_WIDTH);
+        assert_eq!(width_for(LONG_RENDER_MIN_SAMPLES, false), wide_width());
     }
 
     #[test]
