@@ -58,11 +58,9 @@ fn packet(rays: Rays4) -> Packet {
 // A lower bound of the four rays' entries into the box whose near and far
 // corners are `near` and `far` (each ray's as `slab_entry` gives it, t_max the
 // largest of theirs), or MISS when none of them enters it. Rounding is monotonic,
-// so a product of the extreme operands bounds each ray's own product.
-// `slab_entry`'s arithmetic, but with min and max as a compare and a select:
-// lavapipe makes WGSL's min and max NaN-safe (a compare for NaN and a blend
-// beside each min or max instruction), and nothing here is NaN: the products
-// on an axis that bounds are finite, the others are replaced by ±MISS.
+// so a product of the extreme operands bounds each ray's own product. Nothing
+// here is NaN: the products on an axis that bounds are finite, the others are
+// replaced by ±MISS.
 fn packet_entry(b: PacketBounds, near: vec3<f32>, far: vec3<f32>, t_max: f32) -> f32 {
     let d_near = near - b.near_origin;
     let d_far = far - b.far_origin;
@@ -73,6 +71,9 @@ fn packet_entry(b: PacketBounds, near: vec3<f32>, far: vec3<f32>, t_max: f32) ->
     return select(MISS, greater(entry, 0.0), entry <= exit && exit >= 0.0 && entry <= t_max);
 }
 
+// min and max for what a packet computes, which is never NaN, as a compare
+// and a select: lavapipe makes WGSL's min and max NaN-safe, a compare for NaN
+// and a blend beside each min or max instruction.
 fn lesser(a: f32, b: f32) -> f32 {
     return select(b, a, a < b);
 }

@@ -76,10 +76,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
     // Cold, the kernels a first render of each scene compiles; warm, those of
     // a long render, whose time the warm frames stand for.
-    let (samples, rendered_before) = match args.cold {
-        true => (u64::from(args.width) * u64::from(args.height), false),
-        false => (glint_gpu::LONG_RENDER_MIN_SAMPLES, true),
-    };
+    let (samples, rendered_before) =
+        if args.cold { (u64::from(args.width) * u64::from(args.height), false) } else { (glint_gpu::LONG_RENDER_MIN_SAMPLES, true) };
     // SAFETY: no thread has been started yet.
     unsafe { glint_gpu::compile_for_samples(samples, rendered_before) };
     let gpu = Gpu::new()?;
