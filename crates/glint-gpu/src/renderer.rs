@@ -337,7 +337,7 @@ impl Renderer {
             let total = u64::from(options.spp) * region.pixels();
             let mut done = 0;
             for place in region.tiles(scene.accum_pixels) {
-                stats = stats + self.trace_tile(scene, place, options, &mut |pixels| progress(done + pixels, total))?;
+                stats += self.trace_tile(scene, place, options, &mut |pixels| progress(done + pixels, total))?;
                 done += u64::from(options.spp) * place.pixels();
                 tile(place, self.resolve_buffer(&scene.accum, place.width(), place.height(), options)?)?;
             }
@@ -365,7 +365,7 @@ impl Renderer {
         let total = u64::from(options.spp) * image.pixels();
         let (mut stats, mut done) = (RayStats::default(), 0);
         for tile in image.tiles(scene.accum_pixels) {
-            stats = stats + self.trace_tile(scene, tile, options, &mut |pixels| progress(done + pixels, total))?;
+            stats += self.trace_tile(scene, tile, options, &mut |pixels| progress(done + pixels, total))?;
             done += u64::from(options.spp) * tile.pixels();
         }
         Ok(stats)
@@ -384,7 +384,7 @@ impl Renderer {
         let mut stats = RayStats::default();
         for sample in 0..options.spp {
             let done = u64::from(sample) * tile.pixels();
-            stats = stats + self.trace_sample(scene, tile, sample, options, &mut |pixels| progress(done + pixels))?;
+            stats += self.trace_sample(scene, tile, sample, options, &mut |pixels| progress(done + pixels))?;
         }
         Ok(stats)
     }
