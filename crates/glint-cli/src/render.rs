@@ -363,7 +363,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
             bar.set_length(total * count);
             bar.set_position(i as u64 * total + done);
         })?;
-        stats = stats + frame_stats;
+        stats += frame_stats;
         // A legend tells one image's range.
         if count == 1 {
             legend = crate::legend::legend(&summary, options.view_scale, prepared.bvh_nodes, scene.objects.len());

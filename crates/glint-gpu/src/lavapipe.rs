@@ -82,7 +82,7 @@ unsafe fn cache_by_width(width: &OsString) {
 
 /// [`WIDE_WIDTH`] where this CPU runs 256-bit vectors natively (AVX2), else
 /// [`LAVAPIPE_WIDTH`].
-pub fn wide_width() -> &'static str {
+fn wide_width() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     let wide = std::arch::is_x86_feature_detected!("avx2");
     #[cfg(not(target_arch = "x86_64"))]
