@@ -1,14 +1,15 @@
 //! The kernels read the scene's arrays from storage buffers or from textures
 //! (`SceneArrays`: textures for kernels lavapipe compiles without its
-//! optimisation passes). Both must trace the same bits: every view, ray
-//! packets and single rays, every kind of primitive, and a scene whose arrays
-//! fill more than one row of texels.
+//! optimisation passes), and a BVH that fits from uniform buffers
+//! (`Specialization::uniform_tree`). All must trace the same bits: every view,
+//! ray packets and single rays, every kind of primitive, and a scene whose
+//! arrays fill more than one row of texels.
 
 mod support;
 
 use glint_gpu::shaders::{SceneArrays, ShaderSource};
 use glint_gpu::{Acceleration, RenderOptions, Renderer};
-use glint_scene::gpu_types::View;
+use glint_scene::gpu_types::{View, UNIFORM_TREE_RECORDS};
 use glint_scene::Scene;
 
 fn renderer(arrays: SceneArrays) -> Renderer {
@@ -48,4 +49,40 @@ fn textures_and_buffers_trace_the_same_bits() {
         assert_textures_trace_as_buffers(&buffers, &textures, &scene, name);
     }
     assert_textures_trace_as_buffers(&buffers, &textures, &glint_reference::random_scene(1), "random scene 1");
+}
+
+/// Each kernel that walks the tree, from either kind of arrays, renders the
+/// same bits and counts the same rays and nodes with the tree read from
+/// uniform buffers as from the others; a tree of more records than a uniform
+/// buffer holds is read from the others.
+#[test]
+fn a_tree_in_uniform_buffers_traces_as_in_the_other_arrays() {
+    let views = [View::Shaded, View::Depth, View::Diffuse, View::Heatmap];
+    for arrays in SceneArrays::ALL {
+        let renderer = renderer(arrays);
+        for name in ["tetra:4", "mount:5", "gears:1", "tree:2", "rings:1"] {
+            let mut scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
+            (scene.width, scene.height) = (33, 25);
+            let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+            assert!(prepared.buffers.specialization.uniform_tree, "{name}: {} records fit", prepared.bvh_nodes);
+            for view in views {
+                for packets in [false, true] {
+                    let mut render = |uniform_tree| {
+                        let specialization = &mut prepared.buffers.specialization;
+                        (specialization.packets, specialization.uniform_tree) = (packets, uniform_tree);
+                        let options = RenderOptions { view, ..Default::default() };
+                        renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
+                    };
+                    let ((uniform, uniform_stats), (other, other_stats)) = (render(true), render(false));
+                    let case = format!("{arrays:?}, {name}, {view:?} view, packets {packets}");
+                    support::assert_images_equal(&uniform.linear, &other.linear, 0, &case);
+                    assert_eq!(uniform_stats, other_stats, "{case}");
+                }
+            }
+        }
+    }
+    let large = glint_scene::load(std::path::Path::new("spd:tetra:7")).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = renderer(SceneArrays::Buffers).prepare(&large, 16, 16, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+    assert!(prepared.bvh_nodes > UNIFORM_TREE_RECORDS as usize, "{} records", prepared.bvh_nodes);
+    assert!(!prepared.buffers.specialization.uniform_tree);
 }

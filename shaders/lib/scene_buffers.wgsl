@@ -2,7 +2,7 @@
 // A kernel imports `scene_arrays`, which is this file or scene_textures.wgsl
 // (SceneArrays in crates/glint-gpu/src/shaders.rs): both declare the same
 // functions over the same bindings, of the kind the renderer's layout says.
-// import: types
+// import: types uniform_tree
 
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
 @group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
@@ -16,10 +16,16 @@ fn prim_at(i: u32) -> GpuPrim {
 }
 
 fn node_at(i: u32) -> GpuNode {
+    if UNIFORM_TREE {
+        return uniform_nodes[i];
+    }
     return nodes[i];
 }
 
 fn grid_at(i: u32) -> GpuGrid {
+    if UNIFORM_TREE {
+        return uniform_grids[i];
+    }
     return grids[i];
 }
 

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use glint_scene::gpu_types::{
     DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
+    UNIFORM_ARRAY_BYTES,
 };
 use glint_scene::specialization::Specialization;
 use glint_scene::RayStats;
@@ -107,7 +108,8 @@ pub struct SceneBuffers {
     pub(crate) materials: wgpu::Buffer,
     pub(crate) lights: wgpu::Buffer,
     /// Bytes of geometry and BVH on the device, what grows with the scene (the
-    /// lights' and materials' uniform buffers are a fixed 64 KiB each).
+    /// uniform buffers of the lights, the materials and the tree are a fixed
+    /// 64 KiB each).
     pub scene_bytes: u64,
     /// What the kernels that render it are compiled for: the primitive kinds,
     /// the shading terms, and the view when a command renders one alone.
@@ -229,6 +231,17 @@ impl Renderer {
         let lights = uniform("lights", bytemuck::cast_slice(&scene.lights));
         let materials = uniform("materials", bytemuck::cast_slice(&scene.materials));
         let uniforms_buffer = uniform("scene uniforms", bytemuck::bytes_of(&uniforms));
+        let specialization = Specialization::of(scene, &uniforms);
+        // Bound whether or not the kernels read them; zeros for a tree too large.
+        let tree_uniform = |label: &str, records: &[u8]| {
+            let mut contents = vec![0; UNIFORM_ARRAY_BYTES];
+            if specialization.uniform_tree {
+                contents[..records.len()].copy_from_slice(records);
+            }
+            uniform(label, &contents)
+        };
+        let uniform_nodes = tree_uniform("BVH nodes (uniform)", bytemuck::cast_slice(&scene.nodes));
+        let uniform_grids = tree_uniform("BVH grids (uniform)", bytemuck::cast_slice(&scene.grids));
         let dispatch = uniform("dispatch params", bytemuck::bytes_of(&DispatchParams::zeroed()));
         let accum = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accum"),
@@ -253,6 +266,8 @@ impl Renderer {
             stats.as_entire_binding(),
             grids,
             dispatch.as_entire_binding(),
+            uniform_nodes.as_entire_binding(),
+            uniform_grids.as_entire_binding(),
         ];
         let entries: Vec<wgpu::BindGroupEntry> =
             resources.into_iter().enumerate().map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource }).collect();
@@ -278,7 +293,7 @@ impl Renderer {
             materials,
             lights,
             scene_bytes,
-            specialization: Specialization::of(scene, &uniforms),
+            specialization,
         })
     }
 
@@ -635,7 +650,8 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
 /// the scene uniforms, the scene's arrays (primitives, BVH records, polygon
 /// points and BVH grids) as storage buffers or textures, as `arrays` says,
 /// the materials' and lights' uniform buffers, the accumulation image, the ray
-/// counts and the dispatch parameters.
+/// counts, the dispatch parameters and the BVH's records and grids again in
+/// uniform buffers (shaders/lib/uniform_tree.wgsl).
 fn scene_bind_group_layout(device: &wgpu::Device, arrays: SceneArrays) -> wgpu::BindGroupLayout {
     let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
         binding,
@@ -659,6 +675,8 @@ fn scene_bind_group_layout(device: &wgpu::Device, arrays: SceneArrays) -> wgpu::
         buffer(7, read_write),
         array(8),
         buffer(9, wgpu::BufferBindingType::Uniform),
+        buffer(10, wgpu::BufferBindingType::Uniform),
+        buffer(11, wgpu::BufferBindingType::Uniform),
     ];
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
 }

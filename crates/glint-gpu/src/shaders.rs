@@ -37,6 +37,7 @@ sources![
     "lib/bindings.wgsl",
     "lib/scene_buffers.wgsl",
     "lib/scene_textures.wgsl",
+    "lib/uniform_tree.wgsl",
     "lib/camera.wgsl",
     "lib/sample.wgsl",
     "lib/ray_frame.wgsl",

@@ -122,6 +122,9 @@ shared_constants! {
     /// lane's load is a branch of its own), which also compiles to less code.
     MAX_LIGHTS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>()) as u32;
     MAX_MATERIALS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuMaterial>()) as u32;
+    /// The BVH records (and as many grids) a uniform buffer holds: the kernels
+    /// of a scene whose tree fits read it from there (`Specialization::uniform_tree`).
+    UNIFORM_TREE_RECORDS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuNode>()) as u32;
 
     /// The scene's arrays (primitives, BVH records and grids, polygon points)
     /// reach the kernels as textures of this many 16-byte texels a row

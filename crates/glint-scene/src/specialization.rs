@@ -12,7 +12,7 @@
 use crate::MAX_DEPTH_LIMIT;
 use crate::gpu_types::{
     GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
-    MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
+    MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE, UNIFORM_TREE_RECORDS,
 };
 
 /// The primitive kinds a kernel can intersect, whether its ray tree goes past
@@ -51,6 +51,11 @@ pub struct Specialization {
     /// more): its stack of pending rays holds that many, each of them zeroed
     /// when a pixel starts, so a shallower tree compiles less.
     pub max_depth: u32,
+    /// The BVH's records and grids fit `UNIFORM_TREE_RECORDS`, so the kernel
+    /// reads them from uniform buffers, which lavapipe loads per lane without
+    /// the branch each lane's load from a storage buffer takes. The storage
+    /// buffers hold the tree too, for kernels compiled without this.
+    pub uniform_tree: bool,
 }
 
 /// Eye rays from which a command's primary kernel traces packets: fewer trace
@@ -78,6 +83,7 @@ impl Specialization {
         view: None,
         packets: true,
         max_depth: MAX_DEPTH_LIMIT,
+        uniform_tree: false,
     };
 
     /// What `scene` needs: its primitives' kinds, the terms of the materials
@@ -106,6 +112,7 @@ impl Specialization {
             view: None,
             packets: true,
             max_depth: uniforms.max_depth.max(1),
+            uniform_tree: fits_uniform_tree(scene),
         };
         for p in &scene.prims {
             match p.kind() {
@@ -127,8 +134,8 @@ impl Specialization {
     /// can make, whatever the scene's are: for a scene whose materials, lights
     /// and settings change in place (the viewer's).
     pub fn editable(self) -> Specialization {
-        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, .. } = self;
-        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, ..Specialization::ALL }
+        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, .. } = self;
+        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, ..Specialization::ALL }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -174,7 +181,7 @@ impl Specialization {
             && uniforms.max_depth <= self.max_depth
     }
 
-    fn flags(self) -> [(&'static str, bool); 13] {
+    fn flags(self) -> [(&'static str, bool); 14] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
@@ -189,6 +196,7 @@ impl Specialization {
             ("HAS_ATTENUATION", self.attenuation),
             ("HAS_TINTED_SHADOWS", self.tinted_shadows),
             ("HAS_DEPTH_CUE", self.depth_cue),
+            ("UNIFORM_TREE", self.uniform_tree),
         ]
     }
 
@@ -200,6 +208,11 @@ impl Specialization {
         wgsl.push_str(&format!("const MAX_DEPTH: u32 = {}u;\n", self.max_depth));
         wgsl
     }
+}
+
+fn fits_uniform_tree(scene: &GpuScene) -> bool {
+    let records = UNIFORM_TREE_RECORDS as usize;
+    scene.nodes.len() <= records && scene.grids.len() <= records
 }
 
 fn spawns_secondary_rays(m: &GpuMaterial) -> bool {
@@ -253,6 +266,7 @@ impl std::fmt::Display for Specialization {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gpu_bvh::{GpuGrid, GpuNode};
     use crate::gpu_types::GpuPrim;
     use bytemuck::Zeroable;
 
@@ -293,6 +307,7 @@ mod tests {
             view: None,
             packets: true,
             max_depth: 1,
+            uniform_tree: true,
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones, no refraction");
@@ -300,6 +315,7 @@ mod tests {
         every.prims[2].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
+        every.nodes = vec![GpuNode::zeroed(); UNIFORM_TREE_RECORDS as usize + 1];
         let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, max_depth: MAX_DEPTH_LIMIT, ..SceneUniforms::zeroed() };
         assert_eq!(Specialization::of(&every, &uniforms), Specialization::ALL);
     }
@@ -381,6 +397,22 @@ mod tests {
         assert!(five.covers_uniforms(&at(5)) && five.covers_uniforms(&at(2)));
         assert!(!five.covers_uniforms(&at(6)), "a deeper tree overruns the stack");
         assert!(five.editable().covers_uniforms(&at(MAX_DEPTH_LIMIT)));
+    }
+
+    #[test]
+    fn a_tree_that_fits_a_uniform_buffer_is_read_from_one() {
+        let mut mesh = scene(&[PRIM_TRIANGLE], 0.0);
+        let records = UNIFORM_TREE_RECORDS as usize;
+        (mesh.nodes, mesh.grids) = (vec![GpuNode::zeroed(); records], vec![GpuGrid::zeroed(); records]);
+        let fits = of(&mesh);
+        assert!(fits.uniform_tree && fits.editable().uniform_tree);
+        assert!(fits.wgsl().contains("const UNIFORM_TREE: bool = true;"));
+        mesh.nodes.push(GpuNode::zeroed());
+        assert!(!of(&mesh).uniform_tree, "one record too many");
+        mesh.nodes.pop();
+        mesh.grids.push(GpuGrid::zeroed());
+        assert!(!of(&mesh).uniform_tree, "one grid too many");
+        assert!(!Specialization::ALL.uniform_tree, "a kernel for any scene reads the storage buffers");
     }
 
     #[test]
