@@ -215,3 +215,19 @@ fn bvh_throughput() {
         median_split(&bounds).sah_cost(),
     );
 }
+
+/// A tree a little over its node budget is rebuilt within it, with dearer
+/// nodes and every invariant kept; a tree within its budget, or far over it,
+/// is the SAH tree as `build` makes it.
+#[test]
+fn a_tree_near_its_node_budget_is_built_within_it() {
+    let bounds = random_boxes(7, 2000);
+    let sah = Bvh::build(&bounds);
+    let budget = sah.nodes.len() * 9 / 10;
+    let within = Bvh::build_within(&bounds, budget);
+    check(&within, &bounds);
+    assert!(within.nodes.len() <= budget, "{} nodes for a budget of {budget}", within.nodes.len());
+    assert!(within.sah_cost() > sah.sah_cost(), "the SAH tree is the cheapest by its own measure");
+    assert_eq!(Bvh::build_within(&bounds, sah.nodes.len()).nodes, sah.nodes);
+    assert_eq!(Bvh::build_within(&bounds, sah.nodes.len() / 2).nodes, sah.nodes);
+}
