@@ -1,6 +1,6 @@
 // BVH traversal with a private stack, nearest child first. The host builder
 // guarantees the tree depth fits BVH_STACK.
-// import: bindings primitive ray_frame scene_arrays types
+// import: bindings primitive ray_frame scene_arrays types uniform_tree
 
 // A lane whose ray missed both children waits for the leaf phase to pop, so the
 // descent loop only descends (its body stays small and lanes stay in step).

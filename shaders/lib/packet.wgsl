@@ -8,7 +8,7 @@
 // rays. The packet visits every node one of its rays enters, and each ray gets
 // exactly the hit `traverse` gives it alone: the same tests in the same
 // arithmetic (triangle_intersect4 and the like), the same tie-break.
-// import: bindings bvh cone plane polygon ray_frame scene_arrays sphere triangle types
+// import: bindings bvh cone plane polygon ray_frame scene_arrays sphere triangle types uniform_tree
 
 struct Packet {
     rays: Rays4,

@@ -2,7 +2,7 @@
 // A kernel imports `scene_arrays`, which is this file or scene_textures.wgsl
 // (SceneArrays in crates/glint-gpu/src/shaders.rs): both declare the same
 // functions over the same bindings, of the kind the renderer's layout says.
-// import: types uniform_tree
+// import: types
 
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
 @group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
@@ -15,17 +15,11 @@ fn prim_at(i: u32) -> GpuPrim {
     return prims[i];
 }
 
-fn node_at(i: u32) -> GpuNode {
-    if UNIFORM_TREE {
-        return uniform_nodes[i];
-    }
+fn node_in_arrays(i: u32) -> GpuNode {
     return nodes[i];
 }
 
-fn grid_at(i: u32) -> GpuGrid {
-    if UNIFORM_TREE {
-        return uniform_grids[i];
-    }
+fn grid_in_arrays(i: u32) -> GpuGrid {
     return grids[i];
 }
 

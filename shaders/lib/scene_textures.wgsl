@@ -1,7 +1,7 @@
 // The scene's arrays in textures of SCENE_TEXTURE_WIDTH texels of 16 bytes
 // a row, what kernels compiled without optimisation read fastest: the same
 // functions as scene_buffers.wgsl, from the same bytes.
-// import: types uniform_tree
+// import: types
 
 @group(0) @binding(1) var prim_texels: texture_2d<u32>;
 @group(0) @binding(2) var node_texels: texture_2d<u32>;
@@ -32,18 +32,12 @@ fn prim_at(i: u32) -> GpuPrim {
     );
 }
 
-fn node_at(i: u32) -> GpuNode {
-    if UNIFORM_TREE {
-        return uniform_nodes[i];
-    }
+fn node_in_arrays(i: u32) -> GpuNode {
     let t = textureLoad(node_texels, texel_of(i), 0);
     return GpuNode(t.xyz, t.w);
 }
 
-fn grid_at(i: u32) -> GpuGrid {
-    if UNIFORM_TREE {
-        return uniform_grids[i];
-    }
+fn grid_in_arrays(i: u32) -> GpuGrid {
     let t = textureLoad(grid_texels, texel_of(i), 0);
     return GpuGrid(bitcast<vec3<f32>>(t.xyz), t.w);
 }
