@@ -1,9 +1,10 @@
 //! Ray packets (shaders/lib/packet.wgsl): with `Specialization::packets` the
 //! primary kernel traces the eye rays of each 2×2 block of pixels together,
+//! through the BVH or through their eye tile's list (shaders/lib/eye_tiles.wgsl),
 //! and each ray must get exactly the hit it gets alone. Every data view and
-//! the ray counts are held to the kernel that traces single rays, bit for bit,
-//! for every kind of primitive, both projections, and blocks cut by the
-//! image's edge.
+//! the ray counts of both walks are held to the kernel that traces single
+//! rays, bit for bit, for every kind of primitive, both projections, and
+//! blocks cut by the image's edge.
 
 mod support;
 
@@ -20,17 +21,21 @@ fn assert_packets_trace_as_single_rays(scene: &Scene, what: &str) -> u64 {
     (scene.width, scene.height) = SIZE;
     let renderer = support::renderer();
     let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+    assert!(prepared.buffers.specialization.eye_tiles, "{what}: binned into eye tiles on lavapipe");
     let mut misses = 0;
     for view in View::ALL.into_iter().filter(|v| v.is_primary_only()) {
-        let mut render = |packets| {
+        let mut render = |packets, eye_tiles| {
             prepared.buffers.specialization.packets = packets;
+            prepared.buffers.specialization.eye_tiles = eye_tiles;
             let options = RenderOptions { view, ..Default::default() };
             renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
         };
-        let (single, single_stats) = render(false);
-        let (packets, packet_stats) = render(true);
-        support::assert_images_equal(&packets.linear, &single.linear, 0, &format!("{what}, {view:?} view"));
-        assert_eq!(packet_stats, single_stats, "{what}, {view:?} view");
+        let (single, single_stats) = render(false, false);
+        for (eye_tiles, walk) in [(false, "the BVH"), (true, "eye tiles")] {
+            let (packets, packet_stats) = render(true, eye_tiles);
+            support::assert_images_equal(&packets.linear, &single.linear, 0, &format!("{what}, {view:?} view, packets through {walk}"));
+            assert_eq!(packet_stats, single_stats, "{what}, {view:?} view, packets through {walk}");
+        }
         misses = single_stats.eye_miss;
     }
     assert!(misses < u64::from(SIZE.0 * SIZE.1), "{what}: no ray hit anything");
@@ -108,4 +113,32 @@ fn packets_hit_what_single_rays_hit_on_the_shared_edges_and_corners_of_polygons(
         }
     }
     assert_packets_trace_as_single_rays(&support::parse(&toml), "a grid of squares");
+}
+
+/// Eye tiles belong to the view they were binned for: moved in place, the
+/// camera's primary rays walk the BVH until `pose` bins the tiles again, and
+/// either way the image is that of the scene uploaded with the new camera.
+#[test]
+fn eye_tiles_follow_the_camera() {
+    let mut scene = glint_scene::load(std::path::Path::new("spd:tetra:2")).unwrap_or_else(|e| panic!("{e}"));
+    (scene.width, scene.height) = SIZE;
+    let renderer = support::renderer();
+    let mut moved = scene.clone();
+    moved.camera.eye = moved.camera.eye * 0.8 + glam::Vec3::new(0.3, -0.2, 0.1);
+    let options = RenderOptions { view: View::Depth, ..Default::default() };
+    let depth = |buffers: &glint_gpu::SceneBuffers| renderer.render(buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}")).0;
+    let fresh = renderer.prepare(&moved, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap();
+    assert!(fresh.buffers.specialization.eye_tiles);
+    let want = depth(&fresh.buffers);
+
+    let mut prepared = renderer.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap();
+    let uniforms = glint_scene::gpu_types::scene_uniforms(&moved, SIZE.0, SIZE.1, prepared.lights, prepared.buffers.bvh_root());
+    renderer.write_uniforms(&mut prepared.buffers, &uniforms).unwrap();
+    assert!(!prepared.buffers.specialization.eye_tiles, "the tiles of the old view are not walked");
+    support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera moved in place");
+
+    renderer.pose(&mut prepared, &moved).unwrap();
+    assert!(prepared.buffers.specialization.eye_tiles, "posed: binned for the new view");
+    support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera posed");
+    assert_ne!(depth(&renderer.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap().buffers).linear, want.linear, "the camera moved");
 }

@@ -5,7 +5,7 @@ use std::mem::{offset_of, size_of};
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glint_gpu::shaders::{imports, Kernel, SceneArrays, ShaderSource, SCENE_ARRAYS_IMPORT, SOURCES};
+use glint_gpu::shaders::{imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
@@ -58,7 +58,8 @@ fn every_specialisation_validates() {
             ..Specialization::ALL
         };
         let single_rays = views.map(|s| Specialization { packets: false, ..s });
-        for specialization in kinds.chain(views).chain(single_rays).chain([plain]) {
+        let eye_tiles = views.map(|s| Specialization { eye_tiles: true, ..s });
+        for specialization in kinds.chain(views).chain(single_rays).chain(eye_tiles).chain([plain]) {
             if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization, SceneArrays::Buffers).unwrap().validate() {
                 panic!("{kernel:?} for {specialization}: {e}");
             }
@@ -121,9 +122,11 @@ fn every_shader_file_is_embedded_and_part_of_a_kernel() {
         }
     }
     assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
+    let specialisations = [Specialization::ALL, Specialization { eye_tiles: true, ..Specialization::ALL }];
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
-        .flat_map(|&k| SceneArrays::ALL.map(|arrays| ShaderSource::Embedded.compose(k, Specialization::ALL, arrays).unwrap()))
+        .flat_map(|&k| SceneArrays::ALL.map(|arrays| specialisations.map(|s| ShaderSource::Embedded.compose(k, s, arrays).unwrap())))
+        .flatten()
         .flat_map(|composed| composed.files.into_iter().map(|(name, _)| name))
         .collect();
     for name in SOURCES {
@@ -153,24 +156,29 @@ fn declarations(source: &str) -> Vec<String> {
 /// Imports are stated, not inherited, and none is idle: a file uses a name
 /// declared in another file only if it imports that file, and it uses
 /// something of every file it imports. The import `scene_arrays` stands for
-/// either file of the scene's arrays, which declare the same functions. The
-/// primary kernel carries no ray tree.
+/// either file of the scene's arrays, which declare the same functions, and
+/// `eye_block` for either walk of a block's eye rays. The primary kernel
+/// carries no ray tree.
 #[test]
 fn imports_are_exactly_what_each_file_uses() {
     let read = |name: &str| std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
     let is_scene_arrays = |name: &str| SceneArrays::ALL.iter().any(|a| a.file() == name);
-    let functions = |arrays: SceneArrays| -> Vec<String> {
-        let source = read(arrays.file());
+    let is_eye_block = |name: &str| EYE_BLOCK_FILES.contains(&name);
+    let functions = |file: &str| -> Vec<String> {
+        let source = read(file);
         declarations(&source).into_iter().filter(|n| source.contains(&format!("fn {n}("))).collect()
     };
-    let [buffers, textures] = SceneArrays::ALL.map(|arrays| functions(arrays).into_iter().filter(|n| n != "texel_of").collect::<Vec<_>>());
+    let [buffers, textures] = SceneArrays::ALL.map(|arrays| functions(arrays.file()).into_iter().filter(|n| n != "texel_of").collect::<Vec<_>>());
     assert_eq!(buffers, textures, "the two files of the scene's arrays declare different functions");
+    let [through_bvh, through_tiles] = EYE_BLOCK_FILES.map(functions);
+    assert_eq!(through_bvh, through_tiles, "the two walks of a block's eye rays declare different functions");
     let mut declared: BTreeMap<String, Vec<String>> = SOURCES
         .iter()
-        .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n))
+        .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n) && !is_eye_block(n))
         .map(|n| (n.to_string(), declarations(&read(n))))
         .collect();
     declared.insert(SCENE_ARRAYS_IMPORT.to_string(), buffers);
+    declared.insert(EYE_BLOCK_IMPORT.to_string(), through_bvh);
     let words = |source: &str| -> BTreeSet<String> {
         let code: String = source.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
         code.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect()
@@ -179,7 +187,7 @@ fn imports_are_exactly_what_each_file_uses() {
         let source = read(name);
         let (used, imported) = (words(&source), imports(&source));
         for (file, names) in &declared {
-            if file == name || (file == SCENE_ARRAYS_IMPORT && is_scene_arrays(name)) {
+            if file == name || (file == SCENE_ARRAYS_IMPORT && is_scene_arrays(name)) || (file == EYE_BLOCK_IMPORT && is_eye_block(name)) {
                 continue;
             }
             let uses = names.iter().any(|n| used.contains(n));

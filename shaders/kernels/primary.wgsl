@@ -4,8 +4,9 @@
 // the trace kernel (register and private-memory pressure), so these views and
 // picking run faster and compile sooner. Specialised with PACKETS, each
 // invocation traces the eye rays of a 2×2 block of pixels as one packet
-// (packet.wgsl), except for the heat map, which counts each ray's own visits.
-// import: bvh camera checker dispatch packet primitive scene_arrays types
+// (`trace_eye_block`: through the BVH, or its tile's list when the scene has
+// eye tiles), except for the heat map, which counts each ray's own visits.
+// import: bvh camera checker dispatch eye_block packet primitive scene_arrays types
 
 // What `view` shows of the eye ray `eye`'s closest hit: primitive `prim` at
 // distance `t`, or MISS.
@@ -44,7 +45,7 @@ fn primary_main(
     // driver's compiler does not know: it keeps one copy of their bodies
     // instead of four (a cold start pays for every copy).
     if PACKETS && dispatch_view() != VIEW_HEATMAP {
-        hits = traverse_packet(packet(camera_rays4(corner)));
+        hits = trace_eye_block(corner, in_band(corner));
     } else {
         var left = block;
         while left != 0u {

@@ -90,19 +90,19 @@ fn greater3(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
     return select(b, a, a > b);
 }
 
-// `test_prims` for a packet's closest hits: primitive i against its four rays.
-fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
+// `test_prims` for a packet's closest hits: primitive i, `prim`, against its four rays.
+fn packet_test(i: u32, prim: GpuPrim, p: Packet, hit: PacketHit) -> PacketHit {
     let bound = bitcast<vec4<f32>>(bitcast<vec4<u32>>(hit.t) + vec4<u32>(1u));
     var t = vec4<f32>(MISS);
-    let kind = prim_kind(prim_at(i));
+    let kind = prim_kind(prim);
     let only_triangles = !(HAS_SPHERES || HAS_POLYGONS || HAS_CONES || HAS_PLANES);
     let only_polygons = !(HAS_SPHERES || HAS_TRIANGLES || HAS_CONES || HAS_PLANES);
     if only_triangles || (HAS_TRIANGLES && kind == PRIM_TRIANGLE) {
-        t = triangle_intersect4(prim_at(i), p.frame, vec4<f32>(0.0), bound);
+        t = triangle_intersect4(prim, p.frame, vec4<f32>(0.0), bound);
     } else if only_polygons || (HAS_POLYGONS && kind == PRIM_POLYGON) {
-        t = polygon_intersect4(prim_at(i), p.rays, p.frame, vec4<f32>(0.0), bound);
+        t = polygon_intersect4(prim, p.rays, p.frame, vec4<f32>(0.0), bound);
     } else if HAS_PLANES && kind == PRIM_PLANE {
-        t = plane_intersect4(prim_at(i), p.rays, vec4<f32>(0.0), bound);
+        t = plane_intersect4(prim, p.rays, vec4<f32>(0.0), bound);
     } else {
         // Spheres and cones one ray at a time (scenes of them trace fast
         // alone), in a loop whose count the compiler does not know, so that
@@ -113,9 +113,9 @@ fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
             left &= left - 1u;
             let ray = ray_of(p.rays, k);
             if HAS_SPHERES && kind == PRIM_SPHERE {
-                t[k] = sphere_intersect(prim_at(i), ray, 0.0, bound[k]);
+                t[k] = sphere_intersect(prim, ray, 0.0, bound[k]);
             } else if HAS_CONES {
-                t[k] = cone_intersect(prim_at(i), ray, 0.0, bound[k]);
+                t[k] = cone_intersect(prim, ray, 0.0, bound[k]);
             }
         }
     }
@@ -125,9 +125,22 @@ fn packet_test(i: u32, p: Packet, hit: PacketHit) -> PacketHit {
     if !any(closer | tie) {
         return hit;
     }
-    let object = vec4<u32>(prim_at(i).object);
+    let object = vec4<u32>(prim.object);
     let take = closer | (tie & (object < hit.object));
     return PacketHit(select(hit.t, t, take), select(hit.prim, vec4<u32>(i), take), select(hit.object, object, take));
+}
+
+// The packet's closest hits on the infinite planes, which are in no BVH or
+// list and which every ray tests first, so that a floor it hits already
+// shortens the walk.
+fn packet_planes(p: Packet) -> PacketHit {
+    var hit = PacketHit(vec4<f32>(MISS), vec4<u32>(0u), vec4<u32>(0u));
+    if HAS_PLANES {
+        for (var i = uniforms.plane_first; i < uniforms.plane_first + uniforms.plane_count; i++) {
+            hit = packet_test(i, prim_at(i), p, hit);
+        }
+    }
+    return hit;
 }
 
 fn min4(v: vec4<f32>) -> f32 {
@@ -142,12 +155,7 @@ fn max4(v: vec4<f32>) -> f32 {
 // while-while walk, each child entered when the interval test says one of the
 // rays may enter it, so each ray visits at least the nodes it visits alone.
 fn traverse_packet(p: Packet) -> PacketHit {
-    var hit = PacketHit(vec4<f32>(MISS), vec4<u32>(0u), vec4<u32>(0u));
-    if HAS_PLANES {
-        for (var i = uniforms.plane_first; i < uniforms.plane_first + uniforms.plane_count; i++) {
-            hit = packet_test(i, p, hit);
-        }
-    }
+    var hit = packet_planes(p);
     // The farthest of the four closest hits so far: beyond it no ray needs a node.
     var t_bound = max4(hit.t);
     var top = 0u;
@@ -171,7 +179,7 @@ fn traverse_packet(p: Packet) -> PacketHit {
         if index != NEEDS_POP {
             let leaf = node_at(index & ~LEAF).quantized;
             for (var i = leaf.x; i < leaf.x + leaf.y; i++) {
-                hit = packet_test(i, p, hit);
+                hit = packet_test(i, prim_at(i), p, hit);
             }
             t_bound = max4(hit.t);
         }

@@ -64,6 +64,8 @@ struct Measurement {
     scene: String,
     prims: usize,
     bvh_build: Duration,
+    /// Binning the primitives into eye tiles for the view, when the scene has them.
+    eye_tiles_build: Option<Duration>,
     bvh_nodes: usize,
     gpu_bytes: u64,
     primary: Duration,
@@ -92,8 +94,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     if !args.json {
         eprintln!("{} — {}x{}, median of {} frames", gpu.info().name, args.width, args.height, args.frames);
         println!(
-            "{:<22} {:>9} {:>9} {:>9} {:>10} {:>9} {:>11} {:>10} {:>11} {:>11} {:>9}",
-            "scene", "prims", "build ms", "nodes", "GPU bytes", "B/prim", "primary ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
+            "{:<22} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>11} {:>10} {:>11} {:>11} {:>9}",
+            "scene", "prims", "build ms", "tiles ms", "nodes", "GPU bytes", "B/prim", "primary ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
         );
     }
     // lavapipe's SIMD width, which the kernels' speed depends on.
@@ -128,11 +130,12 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
     let heat_options = RenderOptions { view: View::Heatmap, ..RenderOptions::default() };
     let (heat, _) = renderer.render(&prepared.buffers, &heat_options, &mut |_, _| {})?;
     let nodes_per_primary_ray = heat.linear.iter().map(|p| f64::from(p[0])).sum::<f64>() / heat.linear.len() as f64;
-    let Prepared { primitives, bvh_nodes, bvh_build, buffers, .. } = prepared;
+    let Prepared { primitives, bvh_nodes, bvh_build, eye_tiles_build, buffers, .. } = prepared;
     Ok(Measurement {
         scene: path.display().to_string(),
         prims: primitives,
         bvh_build,
+        eye_tiles_build,
         bvh_nodes,
         gpu_bytes: buffers.scene_bytes,
         primary,
@@ -164,6 +167,7 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
             "height": args.height,
             "prims": m.prims,
             "bvh_build_ms": ms(m.bvh_build),
+            "eye_tiles_ms": m.eye_tiles_build.map(ms),
             "bvh_nodes": m.bvh_nodes,
             "gpu_bytes": m.gpu_bytes,
             "gpu_bytes_per_prim": m.gpu_bytes as f64 / m.prims.max(1) as f64,
@@ -183,11 +187,13 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
         println!("{value}");
     } else {
         let name = Path::new(&m.scene).file_stem().map_or(m.scene.clone(), |s| s.to_string_lossy().into_owned());
+        let tiles = m.eye_tiles_build.map_or("-".to_string(), |d| format!("{:.1}", ms(d)));
         println!(
-            "{:<22} {:>9} {:>9.1} {:>9} {:>10} {:>9.1} {:>11.1} {:>10.2} {:>11.1} {:>11.2} {:>9.1}",
+            "{:<22} {:>9} {:>9.1} {:>9} {:>9} {:>10} {:>9.1} {:>11.1} {:>10.2} {:>11.1} {:>11.2} {:>9.1}",
             name,
             m.prims,
             ms(m.bvh_build),
+            tiles,
             m.bvh_nodes,
             m.gpu_bytes,
             m.gpu_bytes as f64 / m.prims.max(1) as f64,

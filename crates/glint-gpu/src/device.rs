@@ -78,12 +78,14 @@ impl Gpu {
         adapters.into_iter().next().ok_or_else(|| GpuError::NoAdapter(NO_ADAPTER_HINT.into()))
     }
 
-    /// Opens `adapter` asking for its own limits, not wgpu's conservative defaults.
+    /// Opens `adapter` asking for its own limits, not wgpu's conservative
+    /// defaults, and subgroup operations where it has them (eye tiles).
     pub async fn open(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("glint"),
                 required_limits: adapter.limits(),
+                required_features: adapter.features() & wgpu::Features::SUBGROUP,
                 ..Default::default()
             })
             .await

@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
+use glint_scene::eye_tiles::Footprints;
 use glint_scene::gpu_types::{self, View, UNIFORM_TREE_RECORDS};
 use glint_scene::polygon_split;
 use glint_scene::Scene;
@@ -27,6 +28,10 @@ pub struct Prepared {
     pub primitives: usize,
     pub bvh_nodes: usize,
     pub bvh_build: Duration,
+    /// The BVH's primitives as the eye tiles bin them, for each new view.
+    pub footprints: Footprints,
+    /// Binning them into eye tiles for the view, when the scene has them.
+    pub eye_tiles_build: Option<Duration>,
     /// Distance from the eye to the farthest corner of the scene's bounds.
     pub depth_extent: f32,
     /// The scene's longest ray path and its lights, which bound the ray tree.
@@ -69,12 +74,25 @@ impl Renderer {
         let bvh_build = start.elapsed();
         let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
         let uniforms = gpu_types::scene_uniforms(scene, width, height, packed.light_count, packed.bvh_root);
-        let buffers = self.upload(&packed, uniforms)?;
+        let mut buffers = self.upload(&packed, uniforms)?;
+        // Brute force is the reference the BVH is checked against: every ray
+        // tests every primitive, from no list.
+        let (footprints, eye_tiles_build) = match acceleration {
+            Acceleration::Bvh => {
+                let start = Instant::now();
+                let footprints = Footprints::new(&packed.prims, &bvh.order.iter().map(|&i| bounds[i as usize]).collect::<Vec<_>>());
+                let binned = self.bin_eye_tiles(&mut buffers, &footprints, &uniforms.camera);
+                (footprints, binned.then(|| start.elapsed()))
+            }
+            Acceleration::BruteForce => (Footprints::default(), None),
+        };
         Ok(Prepared {
             buffers,
             primitives: scene.primitive_count(),
             bvh_nodes: bvh.nodes.len(),
             bvh_build,
+            footprints,
+            eye_tiles_build,
             depth_extent: depth_extent(&bounds, scene.camera.eye),
             max_depth: scene.render.max_depth,
             lights: packed.light_count,
@@ -82,20 +100,23 @@ impl Renderer {
     }
 
     /// Gives a prepared scene the camera and lights of `scene`, the same scene
-    /// posed at another frame (`Scene::set_frame`): only the lights and the
-    /// uniforms are written, nothing is rebuilt, and the depth view's extent
-    /// follows the eye.
+    /// posed at another frame (`Scene::set_frame`): only the lights, the
+    /// uniforms and the eye tiles (which are the view's) are written, and the
+    /// depth view's extent follows the eye.
     pub fn pose(&self, prepared: &mut Prepared, scene: &Scene) -> Result<(), GpuError> {
         let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
         if lights.len() != prepared.lights as usize {
             return Err(GpuError::Runtime(format!("{} lights are on, but the scene was prepared with {}", lights.len(), prepared.lights)));
         }
-        let buffers = &prepared.buffers;
+        let buffers = &mut prepared.buffers;
         if !lights.is_empty() {
             self.write_lights(buffers, &lights)?;
         }
         let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.bvh_root());
         self.write_uniforms(buffers, &uniforms)?;
+        if !buffers.specialization.eye_tiles && prepared.eye_tiles_build.is_some() {
+            self.bin_eye_tiles(buffers, &prepared.footprints, &uniforms.camera);
+        }
         prepared.depth_extent = depth_extent(&gpu_types::primitive_bounds(scene), scene.camera.eye);
         Ok(())
     }

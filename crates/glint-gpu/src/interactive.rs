@@ -180,7 +180,7 @@ impl Renderer {
     /// cue, maximum depth, light count) for the dispatches that follow; they
     /// must be for the buffers' image size and BVH root, and a scene uploaded
     /// for its own settings (opaque shadows, no depth cue) takes no others.
-    pub fn write_uniforms(&self, scene: &SceneBuffers, uniforms: &SceneUniforms) -> Result<(), GpuError> {
+    pub fn write_uniforms(&self, scene: &mut SceneBuffers, uniforms: &SceneUniforms) -> Result<(), GpuError> {
         debug_assert_eq!((uniforms.width, uniforms.height, uniforms.bvh_root), (scene.width, scene.height, scene.bvh_root));
         if !scene.specialization.covers_uniforms(uniforms) {
             return Err(GpuError::Runtime(format!(
@@ -189,6 +189,7 @@ impl Renderer {
             )));
         }
         self.queue.write_buffer(&scene.uniforms, 0, bytemuck::bytes_of(uniforms));
+        scene.aim_eye_tiles(&uniforms.camera);
         Ok(())
     }
 

@@ -8,6 +8,7 @@
 
 mod device;
 pub mod display;
+mod eye_tiles;
 mod frame;
 pub mod interactive;
 mod lavapipe;

@@ -12,6 +12,7 @@ use glint_scene::specialization::Specialization;
 use glint_scene::RayStats;
 use wgpu::util::DeviceExt;
 
+use crate::eye_tiles::{self, EyeTileBinding};
 use crate::pipelines::Pipelines;
 use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::scene_textures;
@@ -77,6 +78,8 @@ pub struct Renderer {
     pub(crate) pipelines: Pipelines,
     /// The bind group layout the trace and primary kernels share.
     pub(crate) scene_layout: wgpu::BindGroupLayout,
+    /// Group 1 of those kernels: the view's eye tiles, which the primary kernel reads.
+    pub(crate) eye_tiles_layout: wgpu::BindGroupLayout,
     pub(crate) scene_arrays: SceneArrays,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
@@ -105,6 +108,7 @@ pub struct SceneBuffers {
     pub(crate) accum_pixels: u64,
     pub(crate) stats: wgpu::Buffer,
     pub(crate) scene_bind: wgpu::BindGroup,
+    pub(crate) eye_tiles: EyeTileBinding,
     pub(crate) materials: wgpu::Buffer,
     pub(crate) lights: wgpu::Buffer,
     /// Bytes of geometry and BVH on the device, what grows with the scene (the
@@ -126,9 +130,10 @@ impl Renderer {
     /// A renderer whose kernels read the scene's arrays from `arrays`.
     pub fn reading(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, arrays: SceneArrays) -> Result<Self, GpuError> {
         let scene_layout = scene_bind_group_layout(&device, arrays);
+        let eye_tiles_layout = eye_tiles::bind_group_layout(&device);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("scene"),
-            bind_group_layouts: &[Some(&scene_layout)],
+            bind_group_layouts: &[Some(&scene_layout), Some(&eye_tiles_layout)],
             immediate_size: 0,
         });
         let pipelines = Pipelines::new(&device, source, pipeline_layout, arrays)?;
@@ -143,6 +148,7 @@ impl Renderer {
             queue,
             pipelines,
             scene_layout,
+            eye_tiles_layout,
             scene_arrays: arrays,
             lost,
             bands: Mutex::new(BandScheduler::before_compile(BATCH_TARGET)),
@@ -208,12 +214,14 @@ impl Renderer {
             }
         }
         let (buffers, views);
+        let mut prims_buffer = None;
         let [prims, nodes, points, grids]: [wgpu::BindingResource; 4] = match self.scene_arrays {
             SceneArrays::Buffers => {
                 buffers = arrays.map(|(what, contents)| {
                     let usage = wgpu::BufferUsages::STORAGE;
                     self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(what), contents, usage })
                 });
+                prims_buffer = Some(buffers[0].clone());
                 buffers.each_ref().map(|b| b.as_entire_binding())
             }
             SceneArrays::Textures => {
@@ -221,6 +229,7 @@ impl Renderer {
                 views.each_ref().map(wgpu::BindingResource::TextureView)
             }
         };
+        let eye_tiles = self.no_eye_tiles(prims_buffer.as_ref());
         let uniform = |label: &str, contents: &[u8]| {
             self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -290,6 +299,7 @@ impl Renderer {
             accum_pixels,
             stats,
             scene_bind,
+            eye_tiles,
             materials,
             lights,
             scene_bytes,
@@ -476,13 +486,15 @@ impl Renderer {
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), GpuError> {
         let kernel = kernel_for(view);
-        let specialization = scene.specialization.dispatching(view);
+        let mut specialization = scene.specialization.dispatching(view);
+        specialization.eye_tiles &= eye_tiles::tiles_align(&region);
         let pipeline = self.pipelines.get(kernel, specialization)?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &scene.scene_bind, &[]);
+        pass.set_bind_group(1, &scene.eye_tiles.bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
         let [across, down] = kernel.workgroup_size().map(|n| n * kernel.block_side(specialization));
         pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);

@@ -49,6 +49,8 @@ sources![
     "lib/primitive.wgsl",
     "lib/bvh.wgsl",
     "lib/packet.wgsl",
+    "lib/eye_bvh.wgsl",
+    "lib/eye_tiles.wgsl",
     "lib/reflect.wgsl",
     "lib/refract.wgsl",
     "lib/shadow.wgsl",
@@ -106,8 +108,8 @@ impl Kernel {
     /// whatever else differs. Only the primary kernel traces packets.
     pub fn compiled_for(self, specialization: Specialization) -> Specialization {
         match self {
-            Kernel::Primary => specialization,
-            _ if self.is_specialised() => Specialization { packets: true, ..specialization },
+            Kernel::Primary => Specialization { eye_tiles: specialization.eye_tiles && specialization.packets, ..specialization },
+            _ if self.is_specialised() => Specialization { packets: true, eye_tiles: false, ..specialization },
             _ => Specialization::ALL,
         }
     }
@@ -202,6 +204,19 @@ impl Composed {
 /// The import that stands for the file of [`SceneArrays::file`].
 pub const SCENE_ARRAYS_IMPORT: &str = "lib/scene_arrays.wgsl";
 
+/// The import that stands for the file that traces a 2×2 block's eye rays
+/// (`trace_eye_block`): through its eye tile's list when the kernel is
+/// specialised to eye tiles (the only file with subgroup operations, which a
+/// device without them would refuse), else through the BVH.
+pub const EYE_BLOCK_IMPORT: &str = "lib/eye_block.wgsl";
+
+/// The files [`EYE_BLOCK_IMPORT`] stands for: through the BVH, through eye tiles.
+pub const EYE_BLOCK_FILES: [&str; 2] = ["lib/eye_bvh.wgsl", "lib/eye_tiles.wgsl"];
+
+fn eye_block_file(specialization: Specialization) -> &'static str {
+    EYE_BLOCK_FILES[usize::from(specialization.eye_tiles)]
+}
+
 /// How the kernels read the scene's arrays (primitives, BVH records and
 /// grids, polygon points): `prim_at` and its siblings, declared alike by
 /// shaders/lib/scene_buffers.wgsl and scene_textures.wgsl, one of which a
@@ -262,7 +277,7 @@ impl ShaderSource {
     /// it as `arrays` says: the prelude, then every file its imports reach.
     pub fn compose(&self, kernel: Kernel, specialization: Specialization, arrays: SceneArrays) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
-        self.visit(kernel.file(), arrays, &mut Vec::new(), &mut order)?;
+        self.visit(kernel.file(), (arrays, specialization), &mut Vec::new(), &mut order)?;
         let mut source = glint_scene::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
         let mut starts = vec![(PRELUDE.to_string(), 1)];
@@ -277,10 +292,22 @@ impl ShaderSource {
     }
 
     /// Appends `name` to `order` after everything it imports (depth first),
-    /// the import of the scene's arrays as the file `arrays` names; `path` is
-    /// the chain of imports being followed, to report a cycle.
-    fn visit(&self, name: &str, arrays: SceneArrays, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
-        let name = if name == SCENE_ARRAYS_IMPORT { arrays.file() } else { name };
+    /// the import of the scene's arrays as the file `arrays` names and that of
+    /// the eye block's walk as the specialisation's; `path` is the chain of
+    /// imports being followed, to report a cycle.
+    fn visit(
+        &self,
+        name: &str,
+        choices: (SceneArrays, Specialization),
+        path: &mut Vec<String>,
+        order: &mut Vec<(String, String)>,
+    ) -> Result<(), GpuError> {
+        let (arrays, specialization) = choices;
+        let name = match name {
+            SCENE_ARRAYS_IMPORT => arrays.file(),
+            EYE_BLOCK_IMPORT => eye_block_file(specialization),
+            name => name,
+        };
         if order.iter().any(|(done, _)| done == name) {
             return Ok(());
         }
@@ -290,7 +317,7 @@ impl ShaderSource {
         let text = self.read(name)?;
         path.push(name.to_string());
         for import in imports(&text) {
-            self.visit(&import, arrays, path, order)?;
+            self.visit(&import, choices, path, order)?;
         }
         path.pop();
         order.push((name.to_string(), text));

@@ -109,6 +109,11 @@ shared_constants! {
     BAND_WORKGROUP_WIDTH: u32 = 8;
     BAND_WORKGROUP_HEIGHT: u32 = 8;
     PRIMARY_WORKGROUP_HEIGHT: u32 = 4;
+    /// The pixels of an eye-ray tile across and down (`eye_tiles`): a SIMD
+    /// group of up to eight invocations of the primary kernel, with packets,
+    /// traces pixels of one tile (`spread_invocation`).
+    EYE_TILE_WIDTH: u32 = 8;
+    EYE_TILE_HEIGHT: u32 = 4;
     /// Strips of a band that every run of a dispatch's workgroups shares
     /// (`spread_workgroup`): a power of two, divided by with a shift.
     SPREAD_STRIPS: u32 = 16;

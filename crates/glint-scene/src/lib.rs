@@ -6,6 +6,7 @@ pub mod animation;
 pub mod bvh;
 mod camera;
 mod error;
+pub mod eye_tiles;
 pub mod gpu_bvh;
 pub mod gpu_types;
 pub mod icosphere;

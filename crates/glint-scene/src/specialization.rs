@@ -56,6 +56,11 @@ pub struct Specialization {
     /// the branch each lane's load from a storage buffer takes. The storage
     /// buffers hold the tree too, for kernels compiled without this.
     pub uniform_tree: bool,
+    /// The primary kernel's packets take their eye rays' primitives from their
+    /// tile's list (`eye_tiles`) instead of the BVH: set by the renderer when
+    /// it has binned the scene for the view, and only for a device whose SIMD
+    /// groups it can hand whole tiles (subgroup operations, four or eight lanes).
+    pub eye_tiles: bool,
 }
 
 /// Eye rays from which a command's primary kernel traces packets: fewer trace
@@ -84,6 +89,7 @@ impl Specialization {
         packets: true,
         max_depth: MAX_DEPTH_LIMIT,
         uniform_tree: false,
+        eye_tiles: false,
     };
 
     /// What `scene` needs: its primitives' kinds, the terms of the materials
@@ -113,6 +119,7 @@ impl Specialization {
             packets: true,
             max_depth: uniforms.max_depth.max(1),
             uniform_tree: fits_uniform_tree(scene),
+            eye_tiles: false,
         };
         for p in &scene.prims {
             match p.kind() {
@@ -134,8 +141,8 @@ impl Specialization {
     /// can make, whatever the scene's are: for a scene whose materials, lights
     /// and settings change in place (the viewer's).
     pub fn editable(self) -> Specialization {
-        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, .. } = self;
-        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, ..Specialization::ALL }
+        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, eye_tiles, .. } = self;
+        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, eye_tiles, ..Specialization::ALL }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -258,6 +265,8 @@ impl std::fmt::Display for Specialization {
         }
         if !self.packets {
             f.write_str(", single eye rays")?;
+        } else if self.eye_tiles {
+            f.write_str(", eye tiles")?;
         }
         Ok(())
     }
@@ -308,6 +317,7 @@ mod tests {
             packets: true,
             max_depth: 1,
             uniform_tree: true,
+            eye_tiles: false,
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones, no refraction");

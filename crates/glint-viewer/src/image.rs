@@ -215,7 +215,7 @@ impl TracedImage {
         let uniforms = gpu_types::scene_uniforms(scene, width, height, lights.len() as u32, canvas.prepared.buffers.bvh_root());
         canvas.take_edits(&materials, &lights, &uniforms, settings.view)?;
         let renderer = &canvas.kernels.renderer;
-        let buffers = &canvas.prepared.buffers;
+        let buffers = &mut canvas.prepared.buffers;
         renderer.write_materials(buffers, &materials)?;
         renderer.write_lights(buffers, &lights)?;
         renderer.write_uniforms(buffers, &uniforms)?;

@@ -158,7 +158,7 @@ fn present_writes_the_resolved_image_into_the_texture() {
 #[test]
 fn edits_in_place_equal_a_fresh_upload() {
     let mut edited = scene();
-    let buffers = upload(&edited);
+    let mut buffers = upload(&edited);
     edited.lights[0].kind = LightKind::Point { position: glam::Vec3::new(2.0, 4.0, 1.0) };
     edited.lights[1].enabled = false;
     edited.materials[1].color = glam::Vec3::new(0.1, 0.8, 0.2);
@@ -169,7 +169,8 @@ fn edits_in_place_equal_a_fresh_upload() {
     let materials: Vec<_> = edited.materials.iter().map(gpu_types::pack_material).collect();
     renderer().write_lights(&buffers, &lights).unwrap();
     renderer().write_materials(&buffers, &materials).unwrap();
-    renderer().write_uniforms(&buffers, &gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.bvh_root())).unwrap();
+    let uniforms = gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.bvh_root());
+    renderer().write_uniforms(&mut buffers, &uniforms).unwrap();
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
 
@@ -205,11 +206,11 @@ fn a_material_made_to_reflect_in_place_needs_secondary_rays() {
 /// `write` of an edit to `buffers` is refused, naming `lacking`, until the
 /// scene is uploaded editable; then the edited scene renders as `edited`
 /// freshly uploaded.
-fn refused_until_editable(mut buffers: SceneBuffers, lacking: &str, edited: &Scene, write: impl Fn(&SceneBuffers) -> Result<(), GpuError>) {
-    let refused = write(&buffers).unwrap_err().to_string();
+fn refused_until_editable(mut buffers: SceneBuffers, lacking: &str, edited: &Scene, write: impl Fn(&mut SceneBuffers) -> Result<(), GpuError>) {
+    let refused = write(&mut buffers).unwrap_err().to_string();
     assert!(refused.contains(lacking) && refused.contains("editable"), "{refused}");
     buffers.specialization = buffers.specialization.editable();
-    write(&buffers).unwrap();
+    write(&mut buffers).unwrap();
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
     let (want, _) = renderer().render(&upload(edited), &options, &mut |_, _| {}).unwrap();

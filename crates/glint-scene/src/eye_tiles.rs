@@ -1,0 +1,223 @@
+//! Eye-ray tiles: for each block of `EYE_TILE_WIDTH` × `EYE_TILE_HEIGHT`
+//! pixels, the primitives an eye ray through one of its pixel centres can hit,
+//! nearest first. A perspective grid of one cell in depth (Hunt & Mark,
+//! "Ray-specialized acceleration structures for ray tracing", 2008), built on
+//! the host for each view.
+//!
+//! Why: lavapipe runs a SIMD group's lanes through the BVH each on its own
+//! path, loading every node and primitive once per lane. The lanes of a tile's
+//! SIMD group instead walk one short list together, so each primitive is loaded
+//! once for all of them (shaders/lib/eye_tiles.wgsl), and the walk stops when
+//! every ray has hit something nearer than the next primitive can be.
+//!
+//! A primitive is listed in every tile its projection's bounding rectangle,
+//! grown by a pixel, touches; one that reaches behind the eye (or into the
+//! eye's plane) is listed everywhere. Each entry carries a distance no hit on
+//! it can be nearer than, with room for rounding, and a tile's entries are in
+//! order of it.
+
+use glam::Vec3;
+
+use crate::gpu_types::{GpuCamera, GpuPrim, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
+
+/// The most entries the lists may hold per tile on average: beyond that a
+/// tile's list costs its rays more than the BVH walk (gears at 512×512, the
+/// most crowded classic scene, holds 37).
+pub const MAX_MEAN_ENTRIES: usize = 64;
+
+/// Pixels by which a primitive's projected rectangle is grown: far more than
+/// the rounding of the projection, so an eye ray's hit is always in its list.
+const MARGIN_PIXELS: f32 = 1.0;
+
+/// The share of an entry's distance kept back for rounding: a computed hit
+/// distance may fall short of the true one (grazing rays most), and the walk
+/// must not stop before a primitive the BVH walk would have tested.
+const NEAR_SLACK: f32 = 0.01;
+
+/// What the host keeps of the BVH's primitives, in the kernels' order, to bin
+/// them for any view: each one's bounds, and a triangle's vertices, whose
+/// projection is tighter than its box's.
+#[derive(Debug, Clone, Default)]
+pub struct Footprints {
+    prims: Vec<Footprint>,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Footprint {
+    lo: Vec3,
+    hi: Vec3,
+    triangle: Option<[Vec3; 3]>,
+}
+
+/// The tiles' lists as the kernel reads them, one array of words: first two
+/// per tile (row by row), the index of its first entry and the number of
+/// entries; then each tile's entries, their primitive indices followed by
+/// their distances (as `f32` bits).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EyeTiles {
+    pub words: Vec<u32>,
+    pub tiles_across: u32,
+    pub tiles_down: u32,
+}
+
+impl Footprints {
+    /// `prims` as packed (the BVH's primitives first, in its order) and
+    /// `bounds`, the bounds of those BVH primitives in the same order.
+    pub fn new(prims: &[GpuPrim], bounds: &[(Vec3, Vec3)]) -> Footprints {
+        let prims = bounds
+            .iter()
+            .zip(prims)
+            .map(|(&(lo, hi), p)| {
+                let vertex = |v: [f32; 4]| Vec3::new(v[0], v[1], v[2]);
+                let triangle = (p.kind() == PRIM_TRIANGLE).then(|| [vertex(p.a), vertex(p.b), vertex(p.c)]);
+                Footprint { lo, hi, triangle }
+            })
+            .collect();
+        Footprints { prims }
+    }
+
+    /// The lists for `camera` at `width` × `height`, or `None` when they would
+    /// be too long to beat the BVH (`MAX_MEAN_ENTRIES`).
+    pub fn bin(&self, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
+        let view = View::new(camera, width, height);
+        let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
+        let tiles = across * down;
+        // Binned nearest first, so every tile's entries come out in that order.
+        let near: Vec<f32> = self.prims.iter().map(|f| view.near(f)).collect();
+        let mut order: Vec<u32> = (0..self.prims.len() as u32).collect();
+        order.sort_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]));
+        let rects: Vec<[usize; 4]> = self.prims.iter().map(|f| view.tiles_touched(f, across, down)).collect();
+        let mut counts = vec![0usize; tiles];
+        for [x0, x1, y0, y1] in &rects {
+            for y in *y0..*y1 {
+                counts[y * across + x0..y * across + x1].iter_mut().for_each(|c| *c += 1);
+            }
+        }
+        let entries: usize = counts.iter().sum();
+        if entries > MAX_MEAN_ENTRIES * tiles || 2 * tiles + 2 * entries > u32::MAX as usize {
+            return None;
+        }
+        let mut words = vec![0u32; 2 * tiles + 2 * entries];
+        let mut next = 2 * tiles;
+        for (tile, &count) in counts.iter().enumerate() {
+            words[2 * tile] = next as u32;
+            words[2 * tile + 1] = 0;
+            next += 2 * count;
+        }
+        for &i in &order {
+            let [x0, x1, y0, y1] = rects[i as usize];
+            for y in y0..y1 {
+                for tile in y * across + x0..y * across + x1 {
+                    let (first, filled) = (words[2 * tile] as usize, words[2 * tile + 1] as usize);
+                    words[first + filled] = i;
+                    words[first + counts[tile] + filled] = near[i as usize].to_bits();
+                    words[2 * tile + 1] += 1;
+                }
+            }
+        }
+        Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
+    }
+}
+
+impl EyeTiles {
+    /// Tile `(x, y)`'s entries: primitive indices and their distances.
+    pub fn entries(&self, x: u32, y: u32) -> (&[u32], impl Iterator<Item = f32> + '_) {
+        let tile = (y * self.tiles_across + x) as usize;
+        let (first, count) = (self.words[2 * tile] as usize, self.words[2 * tile + 1] as usize);
+        (&self.words[first..first + count], self.words[first + count..first + 2 * count].iter().map(|&w| f32::from_bits(w)))
+    }
+}
+
+/// The camera as the kernels make eye rays (shaders/lib/camera.wgsl), for
+/// projecting points onto the image.
+struct View {
+    eye: Vec3,
+    u: Vec3,
+    v: Vec3,
+    w: Vec3,
+    half_width: f32,
+    half_height: f32,
+    orthographic: bool,
+    width: f32,
+    height: f32,
+}
+
+impl View {
+    fn new(camera: &GpuCamera, width: u32, height: u32) -> View {
+        View {
+            eye: camera.eye.into(),
+            u: camera.u.into(),
+            v: camera.v.into(),
+            w: camera.w.into(),
+            half_width: camera.half_width,
+            half_height: camera.half_height,
+            orthographic: camera.projection == PROJECTION_ORTHOGRAPHIC,
+            width: width as f32,
+            height: height as f32,
+        }
+    }
+
+    /// A distance below any eye ray's hit on the primitive: the eye's distance
+    /// to its box (an eye ray's direction has unit length), or for parallel
+    /// rays, which start in the eye's plane, the box's depth in front of it.
+    fn near(&self, f: &Footprint) -> f32 {
+        let distance = if self.orthographic {
+            corners(f.lo, f.hi).iter().map(|&c| (c - self.eye).dot(-self.w)).fold(f32::MAX, f32::min)
+        } else {
+            self.eye.clamp(f.lo, f.hi).distance(self.eye)
+        };
+        distance - NEAR_SLACK * distance.abs()
+    }
+
+    /// The tiles `[x0, x1) × [y0, y1)` an eye ray that can hit `f` passes
+    /// through: none when all of it is behind the eye, where no eye ray goes.
+    fn tiles_touched(&self, f: &Footprint, across: usize, down: usize) -> [usize; 4] {
+        let points: Vec<Vec3> = match f.triangle {
+            Some(vertices) => vertices.to_vec(),
+            None => corners(f.lo, f.hi).to_vec(),
+        };
+        let in_front: Vec<bool> = points.iter().map(|&p| (p - self.eye).dot(-self.w) > 1e-6 * (p - self.eye).length()).collect();
+        if !in_front.contains(&true) {
+            return [0, 0, 0, 0];
+        }
+        let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
+        for (p, in_front) in points.into_iter().zip(in_front) {
+            // A point beside or behind the eye projects to no point of the
+            // image: the primitive may then cross any eye ray.
+            if !in_front && !self.orthographic {
+                return [0, across, 0, down];
+            }
+            let pixel = self.project(p);
+            for axis in 0..2 {
+                lo[axis] = lo[axis].min(pixel[axis] - MARGIN_PIXELS);
+                hi[axis] = hi[axis].max(pixel[axis] + MARGIN_PIXELS);
+            }
+        }
+        if !(lo.iter().chain(&hi).all(|x| x.is_finite())) {
+            return [0, across, 0, down];
+        }
+        if hi[0] < 0.0 || hi[1] < 0.0 || lo[0] > self.width || lo[1] > self.height {
+            return [0, 0, 0, 0];
+        }
+        let tile = |pixel: f32, side: u32, count: usize| ((pixel / side as f32).floor().max(0.0) as usize).min(count - 1);
+        [tile(lo[0], EYE_TILE_WIDTH, across), tile(hi[0], EYE_TILE_WIDTH, across) + 1, tile(lo[1], EYE_TILE_HEIGHT, down), tile(hi[1], EYE_TILE_HEIGHT, down) + 1]
+    }
+
+    /// Where on the image (in pixels, (0, 0) its top-left corner) the eye ray
+    /// through `p`, a point in front of the eye, passes.
+    fn project(&self, p: Vec3) -> [f32; 2] {
+        let q = p - self.eye;
+        let (us, vs) = if self.orthographic { (q.dot(self.u), q.dot(self.v)) } else {
+            let depth = q.dot(-self.w);
+            (q.dot(self.u) / depth, q.dot(self.v) / depth)
+        };
+        [(us + self.half_width) / (2.0 * self.half_width) * self.width, (self.half_height - vs) / (2.0 * self.half_height) * self.height]
+    }
+}
+
+fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|k| Vec3::new([lo.x, hi.x][k & 1], [lo.y, hi.y][(k >> 1) & 1], [lo.z, hi.z][(k >> 2) & 1]))
+}
+
+#[cfg(test)]
+mod tests;
