@@ -80,7 +80,7 @@ impl Renderer {
         let (footprints, eye_tiles_build) = match acceleration {
             Acceleration::Bvh => {
                 let start = Instant::now();
-                let footprints = Footprints::new(&packed.prims, &bvh.order.iter().map(|&i| bounds[i as usize]).collect::<Vec<_>>());
+                let footprints = Footprints::new(&packed, &bvh.order.iter().map(|&i| bounds[i as usize]).collect::<Vec<_>>());
                 let binned = self.bin_eye_tiles(&mut buffers, &footprints, &uniforms.camera);
                 (footprints, binned.then(|| start.elapsed()))
             }

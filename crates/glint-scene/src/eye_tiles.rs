@@ -10,24 +10,26 @@
 //! once for all of them (shaders/lib/eye_tiles.wgsl), and the walk stops when
 //! every ray has hit something nearer than the next primitive can be.
 //!
-//! A primitive is listed in every tile its projection's bounding rectangle,
-//! grown by a pixel, touches; one that reaches behind the eye (or into the
-//! eye's plane) is listed everywhere. Each entry carries a distance no hit on
+//! A primitive is listed in every tile with a pixel centre in its projection's
+//! bounding rectangle, grown for rounding; one that reaches behind the eye (or
+//! into the eye's plane) is listed everywhere. Each entry carries a distance no hit on
 //! it can be nearer than, with room for rounding, and a tile's entries are in
 //! order of it.
 
 use glam::Vec3;
 
-use crate::gpu_types::{GpuCamera, GpuPrim, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
+use crate::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
 
 /// The most entries the lists may hold per tile on average: beyond that a
 /// tile's list costs its rays more than the BVH walk (gears at 512×512, the
 /// most crowded classic scene, holds 37).
 pub const MAX_MEAN_ENTRIES: usize = 64;
 
-/// Pixels by which a primitive's projected rectangle is grown: far more than
-/// the rounding of the projection, so an eye ray's hit is always in its list.
-const MARGIN_PIXELS: f32 = 1.0;
+/// Pixels by which a primitive's projected rectangle is grown, besides a
+/// share of its coordinates: far more than the rounding of the projection
+/// and of the eye rays, so an eye ray's hit is always in its list.
+const MARGIN_PIXELS: f32 = 1.0 / 64.0;
+const MARGIN_SHARE: f32 = 1.0 / 65536.0;
 
 /// The share of an entry's distance kept back for rounding: a computed hit
 /// distance may fall short of the true one (grazing rays most), and the walk
@@ -35,18 +37,20 @@ const MARGIN_PIXELS: f32 = 1.0;
 const NEAR_SLACK: f32 = 0.01;
 
 /// What the host keeps of the BVH's primitives, in the kernels' order, to bin
-/// them for any view: each one's bounds, and a triangle's vertices, whose
-/// projection is tighter than its box's.
+/// them for any view: each one's bounds, and the points whose projections
+/// bound its own: a triangle's or polygon's vertices (tighter than its box's
+/// corners), else its box's corners.
 #[derive(Debug, Clone, Default)]
 pub struct Footprints {
     prims: Vec<Footprint>,
+    points: Vec<Vec3>,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Footprint {
     lo: Vec3,
     hi: Vec3,
-    triangle: Option<[Vec3; 3]>,
+    points: std::ops::Range<usize>,
 }
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
@@ -61,19 +65,25 @@ pub struct EyeTiles {
 }
 
 impl Footprints {
-    /// `prims` as packed (the BVH's primitives first, in its order) and
+    /// `scene`'s primitives as packed (the BVH's first, in its order) and
     /// `bounds`, the bounds of those BVH primitives in the same order.
-    pub fn new(prims: &[GpuPrim], bounds: &[(Vec3, Vec3)]) -> Footprints {
+    pub fn new(scene: &GpuScene, bounds: &[(Vec3, Vec3)]) -> Footprints {
+        let vertex = |v: &[f32; 4]| Vec3::new(v[0], v[1], v[2]);
+        let mut points = Vec::new();
         let prims = bounds
             .iter()
-            .zip(prims)
+            .zip(&scene.prims)
             .map(|(&(lo, hi), p)| {
-                let vertex = |v: [f32; 4]| Vec3::new(v[0], v[1], v[2]);
-                let triangle = (p.kind() == PRIM_TRIANGLE).then(|| [vertex(p.a), vertex(p.b), vertex(p.c)]);
-                Footprint { lo, hi, triangle }
+                let first = points.len();
+                match p.kind() {
+                    PRIM_TRIANGLE => points.extend([&p.a, &p.b, &p.c].map(vertex)),
+                    PRIM_POLYGON => points.extend(scene.points[p.first as usize..(p.first + p.count) as usize].iter().map(vertex)),
+                    _ => points.extend(corners(lo, hi)),
+                }
+                Footprint { lo, hi, points: first..points.len() }
             })
             .collect();
-        Footprints { prims }
+        Footprints { prims, points }
     }
 
     /// The lists for `camera` at `width` × `height`, or `None` when they would
@@ -85,8 +95,8 @@ impl Footprints {
         // Binned nearest first, so every tile's entries come out in that order.
         let near: Vec<f32> = self.prims.iter().map(|f| view.near(f)).collect();
         let mut order: Vec<u32> = (0..self.prims.len() as u32).collect();
-        order.sort_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]));
-        let rects: Vec<[usize; 4]> = self.prims.iter().map(|f| view.tiles_touched(f, across, down)).collect();
+        order.sort_unstable_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]).then(a.cmp(&b)));
+        let rects: Vec<[usize; 4]> = self.prims.iter().map(|f| view.tiles_touched(&self.points[f.points.clone()], across, down)).collect();
         let mut counts = vec![0usize; tiles];
         for [x0, x1, y0, y1] in &rects {
             for y in *y0..*y1 {
@@ -169,38 +179,40 @@ impl View {
         distance - NEAR_SLACK * distance.abs()
     }
 
-    /// The tiles `[x0, x1) × [y0, y1)` an eye ray that can hit `f` passes
-    /// through: none when all of it is behind the eye, where no eye ray goes.
-    fn tiles_touched(&self, f: &Footprint, across: usize, down: usize) -> [usize; 4] {
-        let points: Vec<Vec3> = match f.triangle {
-            Some(vertices) => vertices.to_vec(),
-            None => corners(f.lo, f.hi).to_vec(),
-        };
-        let in_front: Vec<bool> = points.iter().map(|&p| (p - self.eye).dot(-self.w) > 1e-6 * (p - self.eye).length()).collect();
-        if !in_front.contains(&true) {
+    /// The tiles `[x0, x1) × [y0, y1)` with a pixel centre whose eye ray can
+    /// hit what `points` bound: none when all of it is behind the eye, where
+    /// no eye ray goes.
+    fn tiles_touched(&self, points: &[Vec3], across: usize, down: usize) -> [usize; 4] {
+        let in_front = |p: Vec3| (p - self.eye).dot(-self.w) > 1e-6 * (p - self.eye).length();
+        if !points.iter().any(|&p| in_front(p)) {
             return [0, 0, 0, 0];
         }
         let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
-        for (p, in_front) in points.into_iter().zip(in_front) {
+        for &p in points {
             // A point beside or behind the eye projects to no point of the
             // image: the primitive may then cross any eye ray.
-            if !in_front && !self.orthographic {
+            if !in_front(p) && !self.orthographic {
                 return [0, across, 0, down];
             }
             let pixel = self.project(p);
             for axis in 0..2 {
-                lo[axis] = lo[axis].min(pixel[axis] - MARGIN_PIXELS);
-                hi[axis] = hi[axis].max(pixel[axis] + MARGIN_PIXELS);
+                lo[axis] = lo[axis].min(pixel[axis]);
+                hi[axis] = hi[axis].max(pixel[axis]);
             }
         }
         if !(lo.iter().chain(&hi).all(|x| x.is_finite())) {
             return [0, across, 0, down];
         }
-        if hi[0] < 0.0 || hi[1] < 0.0 || lo[0] > self.width || lo[1] > self.height {
-            return [0, 0, 0, 0];
-        }
-        let tile = |pixel: f32, side: u32, count: usize| ((pixel / side as f32).floor().max(0.0) as usize).min(count - 1);
-        [tile(lo[0], EYE_TILE_WIDTH, across), tile(hi[0], EYE_TILE_WIDTH, across) + 1, tile(lo[1], EYE_TILE_HEIGHT, down), tile(hi[1], EYE_TILE_HEIGHT, down) + 1]
+        // Tile t's pixel centres run from side·t + ½ to side·t + side − ½.
+        let range = |axis: usize, side: u32, count: usize| {
+            let margin = MARGIN_PIXELS + MARGIN_SHARE * lo[axis].abs().max(hi[axis].abs());
+            let side = side as f32;
+            let first = ((lo[axis] - margin - (side - 0.5)) / side).ceil().max(0.0);
+            let last = ((hi[axis] + margin - 0.5) / side).floor().min(count as f32 - 1.0);
+            if first > last { (0, 0) } else { (first as usize, last as usize + 1) }
+        };
+        let ((x0, x1), (y0, y1)) = (range(0, EYE_TILE_WIDTH, across), range(1, EYE_TILE_HEIGHT, down));
+        if x0 == x1 || y0 == y1 { [0, 0, 0, 0] } else { [x0, x1, y0, y1] }
     }
 
     /// Where on the image (in pixels, (0, 0) its top-left corner) the eye ray

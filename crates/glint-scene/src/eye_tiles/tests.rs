@@ -2,7 +2,7 @@ use bytemuck::Zeroable;
 use glam::{DVec3, Vec3};
 
 use super::*;
-use crate::gpu_types::PROJECTION_PERSPECTIVE;
+use crate::gpu_types::{GpuPrim, PROJECTION_PERSPECTIVE};
 use crate::test_rng::Rng;
 
 const WIDTH: u32 = 48;
@@ -64,16 +64,26 @@ fn triangles(rng: &mut Rng) -> Vec<[Vec3; 3]> {
         .collect()
 }
 
+/// Every other triangle packed as a polygon of its three vertices, whose
+/// footprint is its vertices in the scene's points.
 fn footprints(triangles: &[[Vec3; 3]]) -> Footprints {
+    let v = |p: Vec3| [p.x, p.y, p.z, 0.0];
+    let mut points = Vec::new();
     let prims: Vec<GpuPrim> = triangles
         .iter()
-        .map(|t| {
-            let v = |p: Vec3| [p.x, p.y, p.z, 0.0];
-            GpuPrim { a: v(t[0]), b: v(t[1]), c: v(t[2]), kind_material: PRIM_TRIANGLE, ..GpuPrim::zeroed() }
+        .enumerate()
+        .map(|(i, t)| {
+            if i % 2 == 0 {
+                return GpuPrim { a: v(t[0]), b: v(t[1]), c: v(t[2]), kind_material: PRIM_TRIANGLE, ..GpuPrim::zeroed() };
+            }
+            let first = points.len() as u32;
+            points.extend(t.map(v));
+            GpuPrim { kind_material: PRIM_POLYGON, first, count: 3, ..GpuPrim::zeroed() }
         })
         .collect();
     let bounds: Vec<(Vec3, Vec3)> = triangles.iter().map(|t| (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]))).collect();
-    Footprints::new(&prims, &bounds)
+    let scene = GpuScene { prims, nodes: Vec::new(), grids: Vec::new(), bvh_root: 0, materials: Vec::new(), lights: Vec::new(), points, light_count: 0 };
+    Footprints::new(&scene, &bounds)
 }
 
 #[test]
