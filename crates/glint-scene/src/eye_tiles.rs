@@ -51,6 +51,9 @@ struct Footprint {
     lo: Vec3,
     hi: Vec3,
     points: std::ops::Range<usize>,
+    /// The points are the primitive's outline in order (a triangle's or
+    /// polygon's vertices), not its box's corners.
+    outline: bool,
 }
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
@@ -80,7 +83,8 @@ impl Footprints {
                     PRIM_POLYGON => points.extend(scene.points[p.first as usize..(p.first + p.count) as usize].iter().map(vertex)),
                     _ => points.extend(corners(lo, hi)),
                 }
-                Footprint { lo, hi, points: first..points.len() }
+                let outline = matches!(p.kind(), PRIM_TRIANGLE | PRIM_POLYGON);
+                Footprint { lo, hi, points: first..points.len(), outline }
             })
             .collect();
         Footprints { prims, points }
@@ -96,12 +100,16 @@ impl Footprints {
         let near: Vec<f32> = self.prims.iter().map(|f| view.near(f)).collect();
         let mut order: Vec<u32> = (0..self.prims.len() as u32).collect();
         order.sort_unstable_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]).then(a.cmp(&b)));
-        let rects: Vec<[usize; 4]> = self.prims.iter().map(|f| view.tiles_touched(&self.points[f.points.clone()], across, down)).collect();
+        // Each primitive's tiles, one run of `covered` each.
+        let (mut covered, mut runs, mut projected) = (Vec::new(), Vec::with_capacity(self.prims.len()), Vec::new());
+        for f in &self.prims {
+            let start = covered.len();
+            view.cover(&self.points[f.points.clone()], f.outline, across, down, &mut projected, &mut covered);
+            runs.push(start..covered.len());
+        }
         let mut counts = vec![0usize; tiles];
-        for [x0, x1, y0, y1] in &rects {
-            for y in *y0..*y1 {
-                counts[y * across + x0..y * across + x1].iter_mut().for_each(|c| *c += 1);
-            }
+        for &tile in &covered {
+            counts[tile as usize] += 1;
         }
         let entries: usize = counts.iter().sum();
         if entries > MAX_MEAN_ENTRIES * tiles || 2 * tiles + 2 * entries > u32::MAX as usize {
@@ -115,14 +123,12 @@ impl Footprints {
             next += 2 * count;
         }
         for &i in &order {
-            let [x0, x1, y0, y1] = rects[i as usize];
-            for y in y0..y1 {
-                for tile in y * across + x0..y * across + x1 {
-                    let (first, filled) = (words[2 * tile] as usize, words[2 * tile + 1] as usize);
-                    words[first + filled] = i;
-                    words[first + counts[tile] + filled] = near[i as usize].to_bits();
-                    words[2 * tile + 1] += 1;
-                }
+            for &tile in &covered[runs[i as usize].clone()] {
+                let tile = tile as usize;
+                let (first, filled) = (words[2 * tile] as usize, words[2 * tile + 1] as usize);
+                words[first + filled] = i;
+                words[first + counts[tile] + filled] = near[i as usize].to_bits();
+                words[2 * tile + 1] += 1;
             }
         }
         Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
@@ -179,40 +185,52 @@ impl View {
         distance - NEAR_SLACK * distance.abs()
     }
 
-    /// The tiles `[x0, x1) × [y0, y1)` with a pixel centre whose eye ray can
-    /// hit what `points` bound: none when all of it is behind the eye, where
-    /// no eye ray goes.
-    fn tiles_touched(&self, points: &[Vec3], across: usize, down: usize) -> [usize; 4] {
+    /// Appends to `covered` the tiles with a pixel centre whose eye ray can
+    /// hit what `points` bound (`outline`: in order round the primitive):
+    /// none when all of it is behind the eye, where no eye ray goes. Those
+    /// its projection's bounding rectangle reaches, less, for a convex
+    /// outline, those wholly beyond one of its edges. `projected` is room.
+    fn cover(&self, points: &[Vec3], outline: bool, across: usize, down: usize, projected: &mut Vec<[f32; 2]>, covered: &mut Vec<u32>) {
+        let mut all = || covered.extend(0..(across * down) as u32);
         let in_front = |p: Vec3| (p - self.eye).dot(-self.w) > 1e-6 * (p - self.eye).length();
         if !points.iter().any(|&p| in_front(p)) {
-            return [0, 0, 0, 0];
+            return;
         }
+        // A point beside or behind the eye projects to no point of the image:
+        // the primitive may then cross any eye ray.
+        if !self.orthographic && !points.iter().all(|&p| in_front(p)) {
+            return all();
+        }
+        projected.clear();
+        projected.extend(points.iter().map(|&p| self.project(p)));
         let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
-        for &p in points {
-            // A point beside or behind the eye projects to no point of the
-            // image: the primitive may then cross any eye ray.
-            if !in_front(p) && !self.orthographic {
-                return [0, across, 0, down];
-            }
-            let pixel = self.project(p);
+        for pixel in projected.iter() {
             for axis in 0..2 {
                 lo[axis] = lo[axis].min(pixel[axis]);
                 hi[axis] = hi[axis].max(pixel[axis]);
             }
         }
         if !(lo.iter().chain(&hi).all(|x| x.is_finite())) {
-            return [0, across, 0, down];
+            return all();
         }
+        let margin = MARGIN_PIXELS + MARGIN_SHARE * lo.iter().chain(&hi).fold(0.0f32, |m, x| m.max(x.abs()));
         // Tile t's pixel centres run from side·t + ½ to side·t + side − ½.
         let range = |axis: usize, side: u32, count: usize| {
-            let margin = MARGIN_PIXELS + MARGIN_SHARE * lo[axis].abs().max(hi[axis].abs());
             let side = side as f32;
             let first = ((lo[axis] - margin - (side - 0.5)) / side).ceil().max(0.0);
             let last = ((hi[axis] + margin - 0.5) / side).floor().min(count as f32 - 1.0);
-            if first > last { (0, 0) } else { (first as usize, last as usize + 1) }
+            if first > last { 0..0 } else { first as usize..last as usize + 1 }
         };
-        let ((x0, x1), (y0, y1)) = (range(0, EYE_TILE_WIDTH, across), range(1, EYE_TILE_HEIGHT, down));
-        if x0 == x1 || y0 == y1 { [0, 0, 0, 0] } else { [x0, x1, y0, y1] }
+        let edges = if outline { convex_edges(projected) } else { None };
+        for y in range(1, EYE_TILE_HEIGHT, down) {
+            for x in range(0, EYE_TILE_WIDTH, across) {
+                let (w, h) = (EYE_TILE_WIDTH as f64, EYE_TILE_HEIGHT as f64);
+                let centres = [x as f64 * w + 0.5, y as f64 * h + 0.5, x as f64 * w + w - 0.5, y as f64 * h + h - 0.5];
+                if edges.as_ref().is_none_or(|edges| !beyond_an_edge(edges, centres, f64::from(margin))) {
+                    covered.push((y * across + x) as u32);
+                }
+            }
+        }
     }
 
     /// Where on the image (in pixels, (0, 0) its top-left corner) the eye ray
@@ -225,6 +243,36 @@ impl View {
         };
         [(us + self.half_width) / (2.0 * self.half_width) * self.width, (self.half_height - vs) / (2.0 * self.half_height) * self.height]
     }
+}
+
+/// A projected outline's edges as lines `(a, n)` through point a with unit
+/// normal n pointing out of it, if the outline is convex and not edge-on.
+fn convex_edges(outline: &[[f32; 2]]) -> Option<Vec<([f64; 2], [f64; 2])>> {
+    let points: Vec<[f64; 2]> = outline.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]).collect();
+    let n = points.len();
+    let turn = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+    let turns: Vec<f64> = (0..n).map(|i| turn(points[i], points[(i + 1) % n], points[(i + 2) % n])).collect();
+    let area: f64 = (0..n).map(|i| points[i][0] * points[(i + 1) % n][1] - points[(i + 1) % n][0] * points[i][1]).sum();
+    if area.abs() < 1e-6 || turns.iter().any(|t| t * area < 0.0) {
+        return None;
+    }
+    let edges = (0..n).filter_map(|i| {
+        let (a, b) = (points[i], points[(i + 1) % n]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let length = dx.hypot(dy);
+        // Outward: to the right of a counter-clockwise outline's edges.
+        (length > 0.0).then(|| (a, [dy * area.signum() / length, -dx * area.signum() / length]))
+    });
+    Some(edges.collect())
+}
+
+/// Whether every point of the rectangle `[x0, y0, x1, y1]` lies farther than
+/// `margin` outside one of `edges`.
+fn beyond_an_edge(edges: &[([f64; 2], [f64; 2])], [x0, y0, x1, y1]: [f64; 4], margin: f64) -> bool {
+    edges.iter().any(|&(a, n)| {
+        let nearest = [if n[0] > 0.0 { x0 } else { x1 }, if n[1] > 0.0 { y0 } else { y1 }];
+        (nearest[0] - a[0]) * n[0] + (nearest[1] - a[1]) * n[1] > margin
+    })
 }
 
 fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {

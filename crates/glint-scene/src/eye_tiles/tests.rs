@@ -137,11 +137,28 @@ fn a_tile_lists_nearest_first_and_only_what_its_rays_may_reach() {
 }
 
 #[test]
+fn a_tile_beyond_a_triangle_s_edge_does_not_list_it() {
+    // A thin diagonal sliver across the image: its bounding rectangle reaches
+    // every tile, its outline those along the diagonal.
+    let camera = camera(PROJECTION_ORTHOGRAPHIC);
+    let sliver = [Vec3::new(-4.0, -3.0, -1.0), Vec3::new(4.0, 3.0, -1.0), Vec3::new(4.0, 2.9, -1.0)];
+    let tiles = footprints(&[sliver]).bin(&camera, WIDTH, HEIGHT).unwrap();
+    let listed = (0..tiles.tiles_down).flat_map(|y| (0..tiles.tiles_across).map(move |x| (x, y))).filter(|&(x, y)| !tiles.entries(x, y).0.is_empty()).count();
+    let all = (tiles.tiles_across * tiles.tiles_down) as usize;
+    assert!(listed > 0 && listed < all / 2, "{listed} of {all} tiles list the sliver");
+    // Packed as a polygon, the same.
+    let polygon = footprints(&[sliver, sliver]).bin(&camera, WIDTH, HEIGHT).unwrap();
+    let listed_twice = (0..tiles.tiles_down).flat_map(|y| (0..tiles.tiles_across).map(move |x| (x, y))).filter(|&(x, y)| polygon.entries(x, y).0.len() == 2).count();
+    assert_eq!(listed_twice, listed);
+}
+
+#[test]
 fn lists_longer_than_the_bvh_repays_are_not_built() {
     // Every triangle fills the view: each tile would list all of them.
-    let wall = |z: f32| [Vec3::new(-50.0, -50.0, z), Vec3::new(50.0, -50.0, z), Vec3::new(0.0, 50.0, z)];
+    let wall = |z: f32| [Vec3::new(-500.0, -500.0, z), Vec3::new(500.0, -500.0, z), Vec3::new(0.0, 500.0, z)];
     let crowded: Vec<[Vec3; 3]> = (0..=MAX_MEAN_ENTRIES).map(|k| wall(-1.0 - k as f32)).collect();
     let camera = camera(PROJECTION_PERSPECTIVE);
     assert!(footprints(&crowded).bin(&camera, WIDTH, HEIGHT).is_none());
     assert!(footprints(&crowded[1..]).bin(&camera, WIDTH, HEIGHT).is_some());
 }
+
