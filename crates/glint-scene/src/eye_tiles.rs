@@ -51,9 +51,6 @@ struct Footprint {
     lo: Vec3,
     hi: Vec3,
     points: std::ops::Range<usize>,
-    /// The points are the primitive's outline in order (a triangle's or
-    /// polygon's vertices), not its box's corners.
-    outline: bool,
 }
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
@@ -83,8 +80,7 @@ impl Footprints {
                     PRIM_POLYGON => points.extend(scene.points[p.first as usize..(p.first + p.count) as usize].iter().map(vertex)),
                     _ => points.extend(corners(lo, hi)),
                 }
-                let outline = matches!(p.kind(), PRIM_TRIANGLE | PRIM_POLYGON);
-                Footprint { lo, hi, points: first..points.len(), outline }
+                Footprint { lo, hi, points: first..points.len() }
             })
             .collect();
         Footprints { prims, points }
@@ -104,7 +100,7 @@ impl Footprints {
         let (mut covered, mut runs, mut projected) = (Vec::new(), Vec::with_capacity(self.prims.len()), Vec::new());
         for f in &self.prims {
             let start = covered.len();
-            view.cover(&self.points[f.points.clone()], f.outline, across, down, &mut projected, &mut covered);
+            view.cover(&self.points[f.points.clone()], across, down, &mut projected, &mut covered);
             runs.push(start..covered.len());
         }
         let mut counts = vec![0usize; tiles];
@@ -186,11 +182,11 @@ impl View {
     }
 
     /// Appends to `covered` the tiles with a pixel centre whose eye ray can
-    /// hit what `points` bound (`outline`: in order round the primitive):
-    /// none when all of it is behind the eye, where no eye ray goes. Those
-    /// its projection's bounding rectangle reaches, less, for a convex
-    /// outline, those wholly beyond one of its edges. `projected` is room.
-    fn cover(&self, points: &[Vec3], outline: bool, across: usize, down: usize, projected: &mut Vec<[f32; 2]>, covered: &mut Vec<u32>) {
+    /// hit what `points` bound: none when all of it is behind the eye, where
+    /// no eye ray goes. Those its projection's bounding rectangle reaches,
+    /// less those wholly beyond one of the edges of its convex hull.
+    /// `projected` is room.
+    fn cover(&self, points: &[Vec3], across: usize, down: usize, projected: &mut Vec<[f32; 2]>, covered: &mut Vec<u32>) {
         let mut all = || covered.extend(0..(across * down) as u32);
         let in_front = |p: Vec3| (p - self.eye).dot(-self.w) > 1e-6 * (p - self.eye).length();
         if !points.iter().any(|&p| in_front(p)) {
@@ -221,7 +217,7 @@ impl View {
             let last = ((hi[axis] + margin - 0.5) / side).floor().min(count as f32 - 1.0);
             if first > last { 0..0 } else { first as usize..last as usize + 1 }
         };
-        let edges = if outline { convex_edges(projected) } else { None };
+        let edges = hull_edges(projected);
         for y in range(1, EYE_TILE_HEIGHT, down) {
             for x in range(0, EYE_TILE_WIDTH, across) {
                 let (w, h) = (EYE_TILE_WIDTH as f64, EYE_TILE_HEIGHT as f64);
@@ -245,23 +241,35 @@ impl View {
     }
 }
 
-/// A projected outline's edges as lines `(a, n)` through point a with unit
-/// normal n pointing out of it, if the outline is convex and not edge-on.
-fn convex_edges(outline: &[[f32; 2]]) -> Option<Vec<([f64; 2], [f64; 2])>> {
-    let points: Vec<[f64; 2]> = outline.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]).collect();
-    let n = points.len();
-    let turn = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
-    let turns: Vec<f64> = (0..n).map(|i| turn(points[i], points[(i + 1) % n], points[(i + 2) % n])).collect();
-    let area: f64 = (0..n).map(|i| points[i][0] * points[(i + 1) % n][1] - points[(i + 1) % n][0] * points[i][1]).sum();
-    if area.abs() < 1e-6 || turns.iter().any(|t| t * area < 0.0) {
+/// The edges of the convex hull of `projected` (Andrew's monotone chain) as
+/// lines `(a, n)` through point a with unit normal n pointing out of it, if
+/// the hull has an inside.
+fn hull_edges(projected: &[[f32; 2]]) -> Option<Vec<([f64; 2], [f64; 2])>> {
+    let mut points: Vec<[f64; 2]> = projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]).collect();
+    points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * points.len());
+    for pass in [points.clone(), points.into_iter().rev().collect()] {
+        let start = hull.len();
+        for p in pass {
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    let n = hull.len();
+    let area: f64 = (0..n).map(|i| hull[i][0] * hull[(i + 1) % n][1] - hull[(i + 1) % n][0] * hull[i][1]).sum();
+    if n < 3 || area < 1e-6 {
         return None;
     }
-    let edges = (0..n).filter_map(|i| {
-        let (a, b) = (points[i], points[(i + 1) % n]);
+    // Counter-clockwise: outward is to the right of each edge.
+    let edges = (0..n).map(|i| {
+        let (a, b) = (hull[i], hull[(i + 1) % n]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let length = dx.hypot(dy);
-        // Outward: to the right of a counter-clockwise outline's edges.
-        (length > 0.0).then(|| (a, [dy * area.signum() / length, -dx * area.signum() / length]))
+        (a, [dy / length, -dx / length])
     });
     Some(edges.collect())
 }
