@@ -28,6 +28,7 @@ ratios of one run mean anything.
 import argparse
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -88,7 +89,8 @@ def glint_viewer_cold(glint, nff):
     env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
     out = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", glint, "view", "--first-image", nff],
                          check=True, env=env, capture_output=True, text=True).stdout
-    return float(out.split()[-2])
+    # "first image after 0.81 s (quick kernels, 256 bits)"
+    return float(re.search(r"first image after ([0-9.]+) s", out).group(1))
 
 
 def mitsuba_run(nff, size, mode, integrator, frames, work):

@@ -15,6 +15,9 @@ pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/showcase.toml");
 
 /// What the built-in default scene is called in the window and in messages.
 const DEFAULT_NAME: &str = "showcase.toml";
+/// The built-in scene's entry in the record of scenes viewed or rendered
+/// before: no file has this path.
+const DEFAULT_RECORD: &str = "glint:showcase.toml";
 
 #[derive(Args)]
 pub struct ViewArgs {
@@ -49,6 +52,10 @@ pub fn run(args: ViewArgs) -> Result<(), Failure> {
     if let Some(message) = missing_display() {
         return Err(Failure::new(exit::NO_DISPLAY, message));
     }
+    let record = args.scene.clone().unwrap_or_else(|| DEFAULT_RECORD.into());
+    let viewed_scenes = glint_gpu::RenderedScenes::of_shader_cache();
+    // SAFETY: no thread has been started yet.
+    unsafe { glint_gpu::compile_for_viewer(viewed_scenes.contains(&record)) };
     let scene = match args.scene {
         Some(path) => glint_viewer::Scene::File(path),
         None => glint_viewer::Scene::BuiltIn { name: DEFAULT_NAME.into(), text: DEFAULT_SCENE },
@@ -58,16 +65,29 @@ pub fn run(args: ViewArgs) -> Result<(), Failure> {
         glint_viewer::RunError::NoDisplay(message) => Failure::new(exit::NO_DISPLAY, message),
         glint_viewer::RunError::Failed(e) => Failure::new(exit::GPU, e),
     })?;
-    match watch.map(|w| w.outcome()) {
+    let outcome = watch.map(|w| w.outcome());
+    if matches!(outcome, None | Some(Some(FirstImage::Shown { .. }))) {
+        viewed_scenes.insert(&record);
+    }
+    match outcome {
         None => Ok(()),
-        Some(Some(FirstImage::Shown(took))) => {
-            println!("first image after {:.2} s", took.as_secs_f64());
+        Some(Some(FirstImage::Shown { after, adapter })) => {
+            println!("first image after {:.2} s{}", after.as_secs_f64(), kernels_note(&adapter));
             Ok(())
         }
         Some(Some(FirstImage::SceneError(e))) => Err(Failure::new(exit::INPUT, e)),
         Some(Some(FirstImage::Failed(e))) => Err(Failure::new(exit::GPU, e)),
         Some(None) => Err(Failure::new(exit::GPU, "the window was closed before the first image was shown")),
     }
+}
+
+/// Which kernels lavapipe compiled, for a report of how long they took.
+fn kernels_note(adapter: &wgpu::AdapterInfo) -> String {
+    let Some(bits) = glint_gpu::vector_bits(adapter).filter(|_| adapter.name.contains("llvmpipe")) else {
+        return String::new();
+    };
+    let kernels = if glint_gpu::kernels_compile_quickly() { "quick" } else { "optimised" };
+    format!(" ({kernels} kernels, {bits} bits)")
 }
 
 #[cfg(test)]

@@ -109,7 +109,33 @@ pub fn width_for(samples: u64, quick: bool) -> &'static str {
 /// Changes the process environment: call it after [`prepare_lavapipe`] and
 /// before any other thread runs.
 pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
-    let quick = std::env::var_os(LAVAPIPE_PERF_ENV).is_none() && quick_compile_pays(samples, rendered_before);
+    // SAFETY: the caller's guarantee.
+    unsafe { choose_kernels(quick_compile_pays(samples, rendered_before), samples) }
+}
+
+/// Chooses lavapipe's kernels for the viewer, as [`compile_for_samples`] does
+/// for a command: quick ones for a scene not viewed or rendered before. What
+/// its user waits for is the first image, most of which a cold start spends
+/// compiling the trace kernel: quick kernels show it 17–30 % sooner on the
+/// triangle scenes (docs/performance.md, 2026-12-06, sixth), and trace the
+/// frames after it 0–50 % slower, until the next session compiles optimised
+/// ones for Mesa's cache.
+///
+/// # Safety
+/// As [`compile_for_samples`].
+pub unsafe fn compile_for_viewer(viewed_before: bool) {
+    // The viewer's samples are open-ended: none chooses the long renders' width.
+    // SAFETY: the caller's guarantee.
+    unsafe { choose_kernels(!viewed_before, 0) }
+}
+
+/// Asks lavapipe for quick kernels or optimised ones (unless `GALLIVM_PERF`
+/// chooses), at [`width_for`] `samples` unless the environment chose a width.
+///
+/// # Safety
+/// As [`compile_for_samples`].
+unsafe fn choose_kernels(quick: bool, samples: u64) {
+    let quick = std::env::var_os(LAVAPIPE_PERF_ENV).is_none() && quick;
     if quick {
         // SAFETY: the caller guarantees no other thread reads the environment.
         unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };

@@ -88,7 +88,7 @@ impl Errors {
 
 pub struct ViewerApp {
     device: wgpu::Device,
-    adapter: String,
+    adapter: wgpu::AdapterInfo,
     device_errors: Arc<Mutex<Vec<String>>>,
     jobs: Jobs<Job>,
     pub(crate) shaders: Shaders,
@@ -123,7 +123,7 @@ impl ViewerApp {
         let warm_up = WarmUp::new(settings.view);
         let mut app = Self {
             device: rs.device.clone(),
-            adapter: format!("{} ({:?})", info.name, info.backend),
+            adapter: info.clone(),
             device_errors,
             jobs: Jobs::new(cc.egui_ctx.clone()),
             shaders: Shaders::new(rs.device.clone(), rs.queue.clone(), options.shaders, warm_up.clone()),
@@ -291,7 +291,7 @@ impl ViewerApp {
             // Converged means submitted: the image is there once the device is done.
             done && self.device.poll(wgpu::PollType::wait_indefinitely()).is_ok()
         };
-        if watch.check(self.errors.scene.as_deref(), &others, shown) {
+        if watch.check(self.errors.scene.as_deref(), &others, &self.adapter, shown) {
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
     }
@@ -317,7 +317,7 @@ impl ViewerApp {
                     parts.push(what.into());
                 }
             }
-            parts.push(self.adapter.clone());
+            parts.push(format!("{} ({:?})", self.adapter.name, self.adapter.backend));
             ui.label(parts.join("  ·  "));
         });
     }

@@ -10,8 +10,8 @@ use std::time::{Duration, Instant};
 /// What the first image came to.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum FirstImage {
-    /// Shown this long after the start.
-    Shown(Duration),
+    /// Shown `after` this long from the start, by `adapter`.
+    Shown { after: Duration, adapter: wgpu::AdapterInfo },
     /// The scene could not be loaded: its error.
     SceneError(String),
     /// The kernels or the device failed: the errors shown.
@@ -37,8 +37,9 @@ impl FirstImageWatch {
     }
 
     /// Records the outcome of this frame, if it has one: true when the window
-    /// should close. `shown` waits for the device to finish the image first.
-    pub(crate) fn check(&self, scene_error: Option<&str>, other_errors: &[String], shown: impl FnOnce() -> bool) -> bool {
+    /// should close. `shown` waits for the device (`adapter`) to finish the
+    /// image first.
+    pub(crate) fn check(&self, scene_error: Option<&str>, other_errors: &[String], adapter: &wgpu::AdapterInfo, shown: impl FnOnce() -> bool) -> bool {
         if self.outcome().is_some() {
             return false;
         }
@@ -47,7 +48,7 @@ impl FirstImageWatch {
         } else if !other_errors.is_empty() {
             FirstImage::Failed(other_errors.join("; "))
         } else if shown() {
-            FirstImage::Shown(self.start.elapsed())
+            FirstImage::Shown { after: self.start.elapsed(), adapter: adapter.clone() }
         } else {
             return false;
         };
@@ -62,20 +63,21 @@ mod tests {
 
     #[test]
     fn the_first_outcome_is_kept_and_errors_come_before_the_image() {
+        let gpu = wgpu::AdapterInfo { name: "gpu".into(), ..wgpu::AdapterInfo::new(wgpu::DeviceType::Cpu, wgpu::Backend::Noop) };
         let watch = FirstImageWatch::new(Instant::now());
-        assert!(!watch.check(None, &[], || false), "nothing shown yet");
+        assert!(!watch.check(None, &[], &gpu, || false), "nothing shown yet");
         assert_eq!(watch.outcome(), None);
         let scene = "scene.toml:3: unknown key".to_string();
-        assert!(watch.check(Some(scene.as_str()), &["a GPU error".into()], || true));
+        assert!(watch.check(Some(scene.as_str()), &["a GPU error".into()], &gpu, || true));
         assert_eq!(watch.outcome(), Some(FirstImage::SceneError(scene)));
-        assert!(!watch.check(None, &[], || true), "decided once");
+        assert!(!watch.check(None, &[], &gpu, || true), "decided once");
 
         let watch = FirstImageWatch::new(Instant::now());
-        assert!(watch.check(None, &["shader: x".into(), "GPU: y".into()], || true));
+        assert!(watch.check(None, &["shader: x".into(), "GPU: y".into()], &gpu, || true));
         assert_eq!(watch.outcome(), Some(FirstImage::Failed("shader: x; GPU: y".into())));
 
         let watch = FirstImageWatch::new(Instant::now());
-        assert!(watch.check(None, &[], || true));
-        assert!(matches!(watch.outcome(), Some(FirstImage::Shown(_))));
+        assert!(watch.check(None, &[], &gpu, || true));
+        assert!(matches!(watch.outcome(), Some(FirstImage::Shown { adapter, .. }) if adapter.name == "gpu"));
     }
 }
