@@ -49,7 +49,7 @@ impl Renderer {
     /// the BVH. True when the scene now has eye tiles.
     pub(crate) fn bin_eye_tiles(&self, scene: &mut SceneBuffers, footprints: &Footprints, camera: &GpuCamera) -> bool {
         let tiles = self.traces_eye_tiles().then(|| footprints.bin(camera, scene.width, scene.height)).flatten();
-        let limit = u64::from(self.device.limits().max_storage_buffer_binding_size);
+        let limit = self.device.limits().max_storage_buffer_binding_size;
         let tiles = tiles.filter(|t| (t.words.len() as u64) * 4 <= limit);
         let prims = scene.eye_tiles.prims.clone();
         scene.eye_tiles = match &tiles {
@@ -100,5 +100,5 @@ impl SceneBuffers {
 /// Whether a dispatch over `region` hands each SIMD group blocks of one tile:
 /// its workgroups start on tile corners.
 pub(crate) fn tiles_align(region: &DispatchParams) -> bool {
-    region.origin[0] % EYE_TILE_WIDTH == 0 && region.origin[1] % EYE_TILE_HEIGHT == 0
+    region.origin[0].is_multiple_of(EYE_TILE_WIDTH) && region.origin[1].is_multiple_of(EYE_TILE_HEIGHT)
 }

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum FirstImage {
     /// Shown `after` this long from the start, by `adapter`.
-    Shown { after: Duration, adapter: wgpu::AdapterInfo },
+    Shown { after: Duration, adapter: Box<wgpu::AdapterInfo> },
     /// The scene could not be loaded: its error.
     SceneError(String),
     /// The kernels or the device failed: the errors shown.
@@ -48,7 +48,7 @@ impl FirstImageWatch {
         } else if !other_errors.is_empty() {
             FirstImage::Failed(other_errors.join("; "))
         } else if shown() {
-            FirstImage::Shown { after: self.start.elapsed(), adapter: adapter.clone() }
+            FirstImage::Shown { after: self.start.elapsed(), adapter: Box::new(adapter.clone()) }
         } else {
             return false;
         };
