@@ -25,7 +25,8 @@ pub struct ViewArgs {
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: Option<PathBuf>,
     /// Close once the first complete image is on screen and print how long it
-    /// took from the start (window, scene, kernels compiled, one sample per pixel)
+    /// took from the start (window, scene, kernels compiled, one sample per
+    /// pixel) and, on lavapipe, which kernels it compiled
     #[arg(long)]
     first_image: bool,
 }
