@@ -394,8 +394,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     plan.encode_video(args.quiet)?;
     if args.stats {
         let info = gpu.adapter.get_info();
-        let lavapipe = info.name.contains("llvmpipe").then(|| (glint_gpu::kernels_compile_quickly(), glint_gpu::vector_bits(&info)));
-        print_stats(&stats, lavapipe, args.json);
+        print_stats(&stats, glint_gpu::lavapipe_kernels(&info), args.json);
     }
     Ok(())
 }

@@ -84,11 +84,8 @@ pub fn run(args: ViewArgs) -> Result<(), Failure> {
 
 /// Which kernels lavapipe compiled, for a report of how long they took.
 fn kernels_note(adapter: &wgpu::AdapterInfo) -> String {
-    let Some(bits) = glint_gpu::vector_bits(adapter).filter(|_| adapter.name.contains("llvmpipe")) else {
-        return String::new();
-    };
-    let kernels = if glint_gpu::kernels_compile_quickly() { "quick" } else { "optimised" };
-    format!(" ({kernels} kernels, {bits} bits)")
+    let Some((quick, Some(bits))) = glint_gpu::lavapipe_kernels(adapter) else { return String::new() };
+    format!(" ({} kernels, {bits} bits)", if quick { "quick" } else { "optimised" })
 }
 
 #[cfg(test)]

@@ -158,6 +158,13 @@ pub fn vector_bits(info: &wgpu::AdapterInfo) -> Option<u32> {
     name[name.rfind(' ')? + 1..].parse().ok()
 }
 
+/// On a lavapipe adapter, the kernels this process compiles: whether they
+/// skip LLVM's optimisation passes ([`kernels_compile_quickly`]) and their
+/// SIMD width in bits ([`vector_bits`]).
+pub fn lavapipe_kernels(info: &wgpu::AdapterInfo) -> Option<(bool, Option<u32>)> {
+    info.name.contains("llvmpipe").then(|| (kernels_compile_quickly(), vector_bits(info)))
+}
+
 /// Whether a command of `samples` samples is better served by quick kernels:
 /// a small render of a scene not rendered before. A scene rendered before is
 /// likely rendered again, and with optimised kernels Mesa's cache then holds

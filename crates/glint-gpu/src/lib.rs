@@ -25,7 +25,7 @@ mod tiles;
 
 pub use device::{adapter_rank, backends, Gpu, ADAPTER_ENV};
 pub use lavapipe::{
-    compile_for_samples, compile_for_viewer, kernels_compile_quickly, old_lavapipe_warning, prepare_lavapipe, shader_cache_disabled, vector_bits, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
+    compile_for_samples, compile_for_viewer, kernels_compile_quickly, lavapipe_kernels, old_lavapipe_warning, prepare_lavapipe, shader_cache_disabled, vector_bits, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
 pub use frame::{Acceleration, Prepared};

@@ -218,9 +218,9 @@ impl View {
             if first > last { 0..0 } else { first as usize..last as usize + 1 }
         };
         let edges = hull_edges(projected);
+        let (w, h) = (f64::from(EYE_TILE_WIDTH), f64::from(EYE_TILE_HEIGHT));
         for y in range(1, EYE_TILE_HEIGHT, down) {
             for x in range(0, EYE_TILE_WIDTH, across) {
-                let (w, h) = (EYE_TILE_WIDTH as f64, EYE_TILE_HEIGHT as f64);
                 let centres = [x as f64 * w + 0.5, y as f64 * h + 0.5, x as f64 * w + w - 0.5, y as f64 * h + h - 0.5];
                 if edges.as_ref().is_none_or(|edges| !beyond_an_edge(edges, centres, f64::from(margin))) {
                     covered.push((y * across + x) as u32);

@@ -143,13 +143,17 @@ fn a_tile_beyond_a_triangle_s_edge_does_not_list_it() {
     let camera = camera(PROJECTION_ORTHOGRAPHIC);
     let sliver = [Vec3::new(-4.0, -3.0, -1.0), Vec3::new(4.0, 3.0, -1.0), Vec3::new(4.0, 2.9, -1.0)];
     let tiles = footprints(&[sliver]).bin(&camera, WIDTH, HEIGHT).unwrap();
-    let listed = (0..tiles.tiles_down).flat_map(|y| (0..tiles.tiles_across).map(move |x| (x, y))).filter(|&(x, y)| !tiles.entries(x, y).0.is_empty()).count();
+    let listed = tiles_whose_list(&tiles, |list| !list.is_empty());
     let all = (tiles.tiles_across * tiles.tiles_down) as usize;
     assert!(listed > 0 && listed < all / 2, "{listed} of {all} tiles list the sliver");
     // Packed as a polygon, the same.
     let polygon = footprints(&[sliver, sliver]).bin(&camera, WIDTH, HEIGHT).unwrap();
-    let listed_twice = (0..tiles.tiles_down).flat_map(|y| (0..tiles.tiles_across).map(move |x| (x, y))).filter(|&(x, y)| polygon.entries(x, y).0.len() == 2).count();
-    assert_eq!(listed_twice, listed);
+    assert_eq!(tiles_whose_list(&polygon, |list| list.len() == 2), listed);
+}
+
+/// How many of `tiles` list what `wanted` asks.
+fn tiles_whose_list(tiles: &EyeTiles, wanted: impl Fn(&[u32]) -> bool) -> usize {
+    (0..tiles.tiles_down).flat_map(|y| (0..tiles.tiles_across).map(move |x| (x, y))).filter(|&(x, y)| wanted(tiles.entries(x, y).0)).count()
 }
 
 #[test]
