@@ -1,7 +1,7 @@
 //! The kernels read the scene's arrays from storage buffers or from textures
 //! (`SceneArrays`: textures for kernels lavapipe compiles without its
 //! optimisation passes), and a BVH that fits from uniform buffers
-//! (`Specialization::uniform_tree`). All must trace the same bits: every view,
+//! (`Tuning::uniform_tree`). All must trace the same bits: every view,
 //! ray packets and single rays, every kind of primitive, and a scene whose
 //! arrays fill more than one row of texels.
 
@@ -26,7 +26,7 @@ fn assert_textures_trace_as_buffers(buffers: &Renderer, textures: &Renderer, sce
         for packets in [false, true] {
             let options = RenderOptions { view, ..Default::default() };
             let render = |renderer: &Renderer, prepared: &mut glint_gpu::Prepared| {
-                prepared.buffers.specialization.packets = packets;
+                prepared.buffers.tuning.packets = packets;
                 renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
             };
             let (a, a_stats) = render(buffers, &mut from_buffers);
@@ -64,12 +64,12 @@ fn a_tree_in_uniform_buffers_traces_as_in_the_other_arrays() {
             let mut scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
             (scene.width, scene.height) = (33, 25);
             let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
-            assert!(prepared.buffers.specialization.uniform_tree, "{name}: {} records fit", prepared.bvh_nodes);
+            assert!(prepared.buffers.tuning.uniform_tree, "{name}: {} records fit", prepared.bvh_nodes);
             for view in views {
                 for packets in [false, true] {
                     let mut render = |uniform_tree| {
-                        let specialization = &mut prepared.buffers.specialization;
-                        (specialization.packets, specialization.uniform_tree) = (packets, uniform_tree);
+                        let tuning = &mut prepared.buffers.tuning;
+                        (tuning.packets, tuning.uniform_tree) = (packets, uniform_tree);
                         let options = RenderOptions { view, ..Default::default() };
                         renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
                     };
@@ -84,5 +84,5 @@ fn a_tree_in_uniform_buffers_traces_as_in_the_other_arrays() {
     let large = glint_scene::load(std::path::Path::new("spd:tetra:7")).unwrap_or_else(|e| panic!("{e}"));
     let prepared = renderer(SceneArrays::Buffers).prepare(&large, 16, 16, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
     assert!(prepared.bvh_nodes > UNIFORM_TREE_RECORDS as usize, "{} records", prepared.bvh_nodes);
-    assert!(!prepared.buffers.specialization.uniform_tree);
+    assert!(!prepared.buffers.tuning.uniform_tree);
 }

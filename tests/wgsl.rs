@@ -6,6 +6,7 @@ use std::mem::{offset_of, size_of};
 use std::collections::{BTreeMap, BTreeSet};
 
 use glint_gpu::shaders::{imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
+use glint_gpu::Tuning;
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
@@ -13,7 +14,7 @@ use glint_scene::gpu_types::{
 use glint_scene::specialization::Specialization;
 
 fn module(kernel: Kernel) -> naga::Module {
-    ShaderSource::Embedded.compose(kernel, Specialization::ALL, SceneArrays::Buffers).unwrap().validate().unwrap()
+    ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap()
 }
 
 fn trace_module() -> naga::Module {
@@ -21,22 +22,24 @@ fn trace_module() -> naga::Module {
 }
 
 #[test]
-fn every_kernel_validates_reading_buffers_and_textures() {
+fn every_kernel_validates_in_every_tuning() {
     for kernel in Kernel::ALL {
-        for arrays in SceneArrays::ALL {
-            if let Err(e) = ShaderSource::Embedded.compose(kernel, Specialization::ALL, arrays).unwrap().validate() {
-                panic!("{kernel:?} reading {arrays:?}: {e}");
+        for tuning in Tuning::all() {
+            if let Err(e) = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().validate() {
+                panic!("{kernel:?} tuned {}: {e}", tuning.name());
             }
         }
     }
 }
 
 /// Every kernel that intersects primitives validates for every specialisation
-/// a scene can need, and only those kernels are compiled per scene.
+/// a scene can need, plain and tuned as lavapipe's, and only those kernels are
+/// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
+    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false };
     for kernel in Kernel::ALL {
-        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, SceneArrays::Buffers).unwrap();
+        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, _)| name == "lib/primitive.wgsl");
         assert_eq!(kernel.is_specialised(), intersects, "{kernel:?}");
         if !intersects {
@@ -57,11 +60,11 @@ fn every_specialisation_validates() {
             depth_cue: false,
             ..Specialization::ALL
         };
-        let single_rays = views.map(|s| Specialization { packets: false, ..s });
-        let eye_tiles = views.map(|s| Specialization { eye_tiles: true, ..s });
-        for specialization in kinds.chain(views).chain(single_rays).chain(eye_tiles).chain([plain]) {
-            if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization, SceneArrays::Buffers).unwrap().validate() {
-                panic!("{kernel:?} for {specialization}: {e}");
+        for specialization in kinds.chain(views).chain([plain]) {
+            for tuning in [Tuning::PLAIN, lavapipe, Tuning { eye_tiles: true, ..lavapipe }] {
+                if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization, tuning.for_kernel(kernel)).unwrap().validate() {
+                    panic!("{kernel:?} for {specialization}, tuned {}: {e}", tuning.name());
+                }
             }
         }
     }
@@ -122,11 +125,9 @@ fn every_shader_file_is_embedded_and_part_of_a_kernel() {
         }
     }
     assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
-    let specialisations = [Specialization::ALL, Specialization { eye_tiles: true, ..Specialization::ALL }];
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
-        .flat_map(|&k| SceneArrays::ALL.map(|arrays| specialisations.map(|s| ShaderSource::Embedded.compose(k, s, arrays).unwrap())))
-        .flatten()
+        .flat_map(|&k| Tuning::all().into_iter().map(move |tuning| ShaderSource::Embedded.compose(k, Specialization::ALL, tuning).unwrap()))
         .flat_map(|composed| composed.files.into_iter().map(|(name, _)| name))
         .collect();
     for name in SOURCES {
@@ -194,7 +195,7 @@ fn imports_are_exactly_what_each_file_uses() {
             assert_eq!(uses, imported.contains(file), "shaders/{name}: {} {file}", if uses { "uses but does not import" } else { "imports but does not use" });
         }
     }
-    let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL, SceneArrays::Buffers).unwrap();
+    let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL, Tuning::PLAIN).unwrap();
     assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
     assert!(!primary.source.contains("fn diffuse_only"), "the primary kernel carries shadow rays");
 }
@@ -211,11 +212,11 @@ fn errors_name_the_file_and_line() {
     let broken = std::fs::read_to_string(&sphere).unwrap().replacen("let b =", "let b = undefined_name +", 1);
     std::fs::write(&sphere, &broken).unwrap();
     let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, SceneArrays::Buffers).unwrap().validate().unwrap_err().to_string();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap_err().to_string();
     assert!(err.contains(&format!("shaders/lib/sphere.wgsl:{line}")), "{err}");
 
     std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, SceneArrays::Buffers).unwrap_err().to_string();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap_err().to_string();
     assert!(err.contains("lib/nowhere.wgsl"), "{err}");
 }
 

@@ -18,6 +18,10 @@ const EYE_TILE = vec2<u32>(EYE_TILE_WIDTH, EYE_TILE_HEIGHT);
 
 // `live`: the block has a pixel in the band; the walk needs not wait for the
 // others' rays, which the list is not for.
+// The subgroup operations run in uniform control flow because a SIMD group's
+// lanes share one tile, so one `count`; no compiler can see that, and WebGPU's
+// (Tint) rejects the kernel unless told.
+@diagnostic(off, subgroup_uniformity)
 fn trace_eye_block(corner: vec2<u32>, live: bool) -> PacketHit {
     let p = packet(camera_rays4(corner));
     var hit = packet_planes(p);

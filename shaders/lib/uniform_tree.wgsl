@@ -1,5 +1,5 @@
 // Where the kernels read the BVH's records and grids: from two uniform buffers
-// when the scene's tree fits them (UNIFORM_TREE, Specialization::uniform_tree),
+// when the scene's tree fits them (UNIFORM_TREE, Tuning::uniform_tree),
 // else from the scene's arrays, which hold it either way. lavapipe loads a
 // uniform per lane without the branch that each lane's load from a storage
 // buffer takes.

@@ -7,7 +7,8 @@ use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer};
 use glint_scene::gpu_types::View;
-use glint_scene::specialization::{Specialization, PACKET_EYE_RAYS};
+use glint_gpu::{DeviceProfile, Tuning};
+use glint_scene::specialization::Specialization;
 
 use crate::{exit, Failure};
 
@@ -68,7 +69,10 @@ struct Measurement {
     eye_tiles_build: Option<Duration>,
     bvh_nodes: usize,
     gpu_bytes: u64,
+    /// A primary frame with its view's host work: what a camera move costs.
     primary: Duration,
+    /// The view's host work alone: its eye tiles binned for the camera.
+    view_work: Duration,
     whitted: Duration,
     stats: RayStats,
     nodes_per_primary_ray: f64,
@@ -94,12 +98,13 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     if !args.json {
         eprintln!("{} — {}x{}, median of {} frames", gpu.info().name, args.width, args.height, args.frames);
         println!(
-            "{:<22} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>11} {:>10} {:>11} {:>11} {:>9}",
-            "scene", "prims", "build ms", "tiles ms", "nodes", "GPU bytes", "B/prim", "primary ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
+            "{:<22} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>11} {:>9} {:>10} {:>11} {:>11} {:>9}",
+            "scene", "prims", "build ms", "tiles ms", "nodes", "GPU bytes", "B/prim", "primary ms", "view ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
         );
     }
-    // lavapipe's SIMD width, which the kernels' speed depends on.
-    let vector_bits = glint_gpu::vector_bits(&gpu.info());
+    // The driver's SIMD width, where the profile chooses it: the kernels'
+    // speed depends on it.
+    let vector_bits = renderer.profile().kernels.and_then(|kernels| kernels.vector_bits);
     for path in &scenes {
         let m = measure(&renderer, path, args, acceleration)?;
         print(&m, args, vector_bits);
@@ -110,10 +115,20 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
 fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
     let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
     let mut prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
-    let scene_kernels = prepared.buffers.specialization;
+    // Per-view host work, as the viewer does it at every camera move.
+    let mut view_times = Vec::new();
+    for _ in 0..args.frames {
+        prepared.buffers.tuning.eye_tiles = false;
+        let start = Instant::now();
+        renderer.pose(&mut prepared, &scene)?;
+        view_times.push(start.elapsed());
+    }
+    view_times.sort();
+    let view_work = view_times[view_times.len() / 2];
+    let scene_kernels = (prepared.buffers.specialization, prepared.buffers.tuning);
     // Device time per frame: tracing only, no resolve or read-back.
     let mut time = |view: View| -> Result<(Duration, RayStats), Failure> {
-        prepared.buffers.specialization = timed_kernels(scene_kernels, view);
+        (prepared.buffers.specialization, prepared.buffers.tuning) = timed_kernels(scene_kernels, view, renderer.profile());
         let options = RenderOptions { view, ..RenderOptions::default() };
         let mut stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
         let mut times = Vec::new();
@@ -138,7 +153,8 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         eye_tiles_build,
         bvh_nodes,
         gpu_bytes: buffers.scene_bytes,
-        primary,
+        primary: primary + view_work,
+        view_work,
         whitted,
         stats,
         nodes_per_primary_ray,
@@ -146,11 +162,12 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
 }
 
 /// The kernels a frame of `view` is timed with: those `glint render` compiles
-/// for a render of that view alone and of many eye rays (packets). A kernel for
-/// every view would time the other views' code too: in the depth view, each hit
-/// loaded the whole primitive for the views that shade it.
-fn timed_kernels(scene_kernels: Specialization, view: View) -> Specialization {
-    scene_kernels.for_views(&[view]).for_eye_rays(PACKET_EYE_RAYS)
+/// for a long render of that view alone (packets where `profile` traces them).
+/// A kernel for every view would time the other views' code too: in the depth
+/// view, each hit loaded the whole primitive for the views that shade it.
+fn timed_kernels(scene_kernels: (Specialization, Tuning), view: View, profile: &DeviceProfile) -> (Specialization, Tuning) {
+    let (specialization, tuning) = scene_kernels;
+    (specialization.for_views(&[view]), Tuning { packets: profile.packets_for(u64::MAX), ..tuning })
 }
 
 fn mrays(rays: u64, time: Duration) -> f64 {
@@ -172,6 +189,7 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
             "gpu_bytes": m.gpu_bytes,
             "gpu_bytes_per_prim": m.gpu_bytes as f64 / m.prims.max(1) as f64,
             "primary_ms": ms(m.primary),
+            "view_work_ms": ms(m.view_work),
             "render_ms": ms(m.whitted),
             "primary_mrays_per_s": mrays(pixels, m.primary),
             "whitted_mrays_per_s": mrays(m.stats.total(), m.whitted),
@@ -189,7 +207,7 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
         let name = Path::new(&m.scene).file_stem().map_or(m.scene.clone(), |s| s.to_string_lossy().into_owned());
         let tiles = m.eye_tiles_build.map_or("-".to_string(), |d| format!("{:.1}", ms(d)));
         println!(
-            "{:<22} {:>9} {:>9.1} {:>9} {:>9} {:>10} {:>9.1} {:>11.1} {:>10.2} {:>11.1} {:>11.2} {:>9.1}",
+            "{:<22} {:>9} {:>9.1} {:>9} {:>9} {:>10} {:>9.1} {:>11.1} {:>9.1} {:>10.2} {:>11.1} {:>11.2} {:>9.1}",
             name,
             m.prims,
             ms(m.bvh_build),
@@ -198,6 +216,7 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
             m.gpu_bytes,
             m.gpu_bytes as f64 / m.prims.max(1) as f64,
             ms(m.primary),
+            ms(m.view_work),
             mrays(pixels, m.primary),
             ms(m.whitted),
             mrays(m.stats.total(), m.whitted),
@@ -208,15 +227,28 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
 
 #[cfg(test)]
 mod tests {
+    use glint_gpu::shaders::SceneArrays;
+    use glint_gpu::{DeviceProfile, Tuning, PACKET_EYE_RAYS};
     use glint_scene::gpu_types::View;
     use glint_scene::specialization::Specialization;
 
     #[test]
-    fn each_view_is_timed_with_the_kernel_a_render_of_it_alone_compiles() {
+    fn each_view_is_timed_with_the_kernel_a_long_render_of_it_alone_compiles() {
+        let profile = |packets| DeviceProfile {
+            kernels: None,
+            scene_arrays: SceneArrays::Buffers,
+            packets,
+            packet_eye_rays: PACKET_EYE_RAYS,
+            uniform_tree: false,
+            eye_tiles: false,
+            resolves_on_host: false,
+        };
         for view in [View::Depth, View::Shaded] {
-            let kernels = super::timed_kernels(Specialization::ALL.for_eye_rays(1), view);
-            assert_eq!(kernels.view, Some(view));
-            assert!(kernels.packets, "{view:?} is timed without packets");
+            for packets in [false, true] {
+                let (specialization, tuning) = super::timed_kernels((Specialization::ALL, Tuning::PLAIN), view, &profile(packets));
+                assert_eq!(specialization.view, Some(view));
+                assert_eq!(tuning.packets, packets, "{view:?} is timed with other packets than a long render traces");
+            }
         }
     }
 

@@ -18,10 +18,10 @@ pub fn run(gpu: &Gpu, scenes: &[PathBuf], width: u32, height: u32, json: bool) -
             true => "Mesa's shader cache disabled",
             false => "Mesa's shader cache enabled: set MESA_SHADER_CACHE_DISABLE=true for a fresh machine's times",
         };
-        let kernels = if glint_gpu::kernels_compile_quickly() { "quick kernels (no LLVM optimisation passes)" } else { "optimised kernels" };
         eprintln!(
-            "{} — {width}x{height}, {kernels}, {cache}; a kernel's compile = its pipeline's creation + its first run − its second",
-            gpu.info().name
+            "{} — {width}x{height}, {}, {cache}; a kernel's compile = its pipeline's creation + its first run − its second",
+            gpu.info().name,
+            gpu.profile().describe()
         );
         println!("{:<22} {:<44} {:>17} {:>19} {:>19}", "scene", "kinds", "trace compile ms", "primary compile ms", "resolve compile ms");
     }
@@ -37,7 +37,7 @@ fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Resul
     let renderer = &Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
     let mut prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
     // The kernels a one-off render of this size compiles (`glint render`).
-    prepared.buffers.specialization = prepared.buffers.specialization.for_eye_rays(u64::from(width) * u64::from(height));
+    prepared.buffers.tuning.packets = renderer.profile().packets_for(u64::from(width) * u64::from(height));
     let buffers = &prepared.buffers;
     // Software rasterisers compile a pipeline when it first runs, not when it is
     // created: its compile is the creation and the first run's excess over the second.
@@ -71,7 +71,7 @@ fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Resul
         })
         .transpose()?;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
-    let kinds = buffers.specialization.to_string();
+    let kinds = format!("{}, {}", buffers.specialization, buffers.tuning);
     if json {
         let value = serde_json::json!({
             "scene": path.display().to_string(),

@@ -6,6 +6,7 @@ mod check;
 mod compare;
 mod frames;
 mod info;
+mod kernels;
 mod probe;
 mod legend;
 mod render;
@@ -50,8 +51,10 @@ enum Command {
     Render(render::RenderArgs),
     /// Check scene files without a GPU: parse, validate and summarise them.
     Check(check::CheckArgs),
-    /// Show the GPU adapter Glint would use and its limits.
+    /// Show the GPU adapter Glint would use, its limits and the choices made for it.
     Info,
+    /// Write the WGSL each kernel is given, one file per kernel and tuning.
+    Kernels(kernels::KernelsArgs),
     /// Measure BVH build, render times and ray throughput per scene.
     Bench(bench::BenchArgs),
     /// Open a scene in the interactive viewer.
@@ -114,11 +117,12 @@ fn main() -> ExitCode {
         }
     };
     // SAFETY: no thread has been started yet.
-    unsafe { glint_gpu::prepare_lavapipe() };
+    unsafe { glint_gpu::prepare_driver_environment() };
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Info => info::run(),
+        Command::Kernels(args) => kernels::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::View(args) => view::run(args),
         Command::Spd(args) => spd::run(&args),

@@ -7,7 +7,9 @@ use std::time::{Duration, Instant};
 use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
-use glint_gpu::{Acceleration, Format, Gpu, ImageSink, PngBits, Prepared, RayStats, Region, RenderOptions, Renderer, StagedImage, ToneMap};
+use glint_gpu::{
+    Acceleration, CompiledKernels, Format, Gpu, ImageSink, PngBits, Prepared, RayStats, Region, RenderOptions, Renderer, StagedImage, ToneMap,
+};
 use glint_scene::gpu_types::{Filter, View};
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::MAX_IMAGE_SIDE;
@@ -314,21 +316,13 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let rendered_before = rendered_scenes.contains(&args.scene);
     // SAFETY: loading the scene and planning the frames started no thread.
     unsafe { glint_gpu::compile_for_samples(samples(args, region, plan.frames.len() as u64), rendered_before) };
-    let gpu = Gpu::new()?;
-    if let Some(warning) = gpu.driver_warning() {
-        eprintln!("glint: {warning}");
-    }
-    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
-    let renderer = match args.max_tile_pixels {
-        Some(pixels) => renderer.with_max_tile_pixels(pixels),
-        None => renderer,
-    };
-    let mut prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
+    let (renderer, mut prepared) = prepare_on_device(&scene, (width, height), args)?;
 
     let view = args.view.view();
     let views: Vec<View> = std::iter::once(view).chain(args.aov.iter().map(|(aov, _)| aov.view())).collect();
     let eye_rays = u64::from(width) * u64::from(height) * plan.frames.len() as u64;
-    prepared.buffers.specialization = prepared.buffers.specialization.for_views(&views).for_eye_rays(eye_rays);
+    prepared.buffers.specialization = prepared.buffers.specialization.for_views(&views);
+    prepared.buffers.tuning.packets = renderer.profile().packets_for(eye_rays);
     let options = RenderOptions {
         view,
         spp: if view.is_primary_only() { 1 } else { args.spp },
@@ -393,8 +387,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     plan.encode_video(args.quiet)?;
     if args.stats {
-        let info = gpu.adapter.get_info();
-        print_stats(&stats, glint_gpu::lavapipe_kernels(&info), args.json);
+        print_stats(&stats, renderer.profile().kernels, args.json);
     }
     Ok(())
 }
@@ -476,9 +469,40 @@ fn samples(args: &RenderArgs, region: Region, frames: u64) -> u64 {
     u64::from(region.width()) * u64::from(region.height()) * frames * per_pixel
 }
 
-/// The rays traced, and on lavapipe whether its kernels skipped LLVM's
-/// optimisation passes (`quick_kernels`) and their SIMD width (`vector_bits`).
-fn print_stats(stats: &RayStats, lavapipe: Option<(bool, Option<u32>)>, json: bool) {
+/// A renderer and `scene` on its device for an image of `size`: a device of
+/// WebGPU's default limits, opened again with the adapter's own value of a
+/// limit the scene needs more of.
+fn prepare_on_device(scene: &glint_scene::Scene, size: (u32, u32), args: &RenderArgs) -> Result<(Renderer, Prepared), Failure> {
+    let mut gpu = Gpu::new()?;
+    if let Some(warning) = gpu.driver_warning() {
+        eprintln!("glint: {warning}");
+    }
+    loop {
+        let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+        let renderer = match args.max_tile_pixels {
+            Some(pixels) => renderer.with_max_tile_pixels(pixels),
+            None => renderer,
+        };
+        let error = match renderer.prepare(scene, size.0, size.1, Acceleration::Bvh) {
+            Ok(prepared) => return Ok((renderer, prepared)),
+            Err(error) => error,
+        };
+        match gpu.raised_for(&error) {
+            Some(raised) => {
+                if !args.quiet {
+                    eprintln!("glint: {error}, WebGPU's default; asking the adapter for more");
+                }
+                gpu = raised?;
+            }
+            None => return Err(error.into()),
+        }
+    }
+}
+
+/// The rays traced, and where the device profile chooses the driver's
+/// kernels, whether they skipped LLVM's optimisation passes (`quick_kernels`)
+/// and their SIMD width (`vector_bits`).
+fn print_stats(stats: &RayStats, kernels: Option<CompiledKernels>, json: bool) {
     if json {
         let mut value = serde_json::json!({
             "eye_hit": stats.eye_hit,
@@ -487,13 +511,13 @@ fn print_stats(stats: &RayStats, lavapipe: Option<(bool, Option<u32>)>, json: bo
             "reflect": stats.reflect,
             "refract": stats.refract,
         });
-        if let Some((quick, bits)) = lavapipe {
+        if let Some(CompiledKernels { quick, vector_bits }) = kernels {
             value["quick_kernels"] = quick.into();
-            value["vector_bits"] = bits.into();
+            value["vector_bits"] = vector_bits.into();
         }
         println!("{value}");
     } else {
-        if let Some((quick, bits)) = lavapipe {
+        if let Some(CompiledKernels { quick, vector_bits: bits }) = kernels {
             let how = if quick { "quickly, without LLVM's optimisation passes (a first, small render)" } else { "optimised" };
             let width = bits.map_or_else(String::new, |bits| format!(", {bits}-bit vectors"));
             println!("kernels compiled {how}{width}");

@@ -26,7 +26,7 @@ pub struct ViewArgs {
     scene: Option<PathBuf>,
     /// Close once the first complete image is on screen and print how long it
     /// took from the start (window, scene, kernels compiled, one sample per
-    /// pixel) and, on lavapipe, which kernels it compiled
+    /// pixel) and, where the device profile chooses them, which kernels it compiled
     #[arg(long)]
     first_image: bool,
 }
@@ -82,10 +82,10 @@ pub fn run(args: ViewArgs) -> Result<(), Failure> {
     }
 }
 
-/// Which kernels lavapipe compiled, for a report of how long they took.
+/// Which kernels the driver compiled, where the device profile chooses
+/// them, for a report of how long they took.
 fn kernels_note(adapter: &wgpu::AdapterInfo) -> String {
-    let Some((quick, Some(bits))) = glint_gpu::lavapipe_kernels(adapter) else { return String::new() };
-    format!(" ({} kernels, {bits} bits)", if quick { "quick" } else { "optimised" })
+    glint_gpu::CompiledKernels::on(adapter).map_or_else(String::new, |kernels| format!(" ({kernels})"))
 }
 
 #[cfg(test)]

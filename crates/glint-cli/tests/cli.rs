@@ -303,7 +303,7 @@ fn nff_scenes_render_with_either_angle_reading() {
 
 #[test]
 fn an_image_beyond_what_the_device_holds_at_once_renders_in_tiles() {
-    // 4100 × 2100 is 8.6 Mpixels, more than lavapipe's 128 MiB storage
+    // 4100 × 2100 is 8.6 Mpixels, more than WebGPU's default 128 MiB storage
     // buffers hold at 16 bytes a pixel; the cheap depth view keeps it quick.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("huge.png");

@@ -1,4 +1,4 @@
-//! `glint test` end to end on the GPU (lavapipe in CI; no adapter is a
+//! `glint test` end to end on the GPU (a software adapter in CI; no adapter is a
 //! failure, never a skip): a fresh folder fails for want of goldens, `--bless`
 //! creates them, re-runs pass and write the same bytes, a changed golden fails
 //! with JUnit XML and an HTML report that headless Chromium loads with its

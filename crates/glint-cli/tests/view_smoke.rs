@@ -183,7 +183,7 @@ fn first_image(scene: &Path, env: &[(&str, Option<&OsStr>)]) -> std::process::Ou
     std::process::Output { status, stdout: stdout.join().unwrap(), stderr: stderr.join().unwrap() }
 }
 
-/// The seconds and the note (which kernels lavapipe compiled) of a report
+/// The seconds and the note (which kernels the software driver compiled) of a report
 /// `first image after 0.81 s (quick kernels, 256 bits)`.
 fn first_image_report(out: &std::process::Output) -> (f64, String) {
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));

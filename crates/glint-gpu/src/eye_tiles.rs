@@ -9,10 +9,6 @@ use wgpu::util::DeviceExt;
 
 use crate::{Renderer, SceneBuffers};
 
-/// SIMD group sizes whose lanes the primary kernel hands blocks of one tile
-/// (`spread_invocation`), four of them to load a primitive's words.
-const TILE_SIMD_SIZES: [u32; 2] = [4, 8];
-
 /// A scene's eye tiles as bound: the lists, for the camera they were built
 /// for (none: empty lists, which no kernel reads), and the primitives' buffer
 /// to bind beside them.
@@ -48,7 +44,7 @@ impl Renderer {
     /// trace them and they are short enough to repay it; else the kernels walk
     /// the BVH. True when the scene now has eye tiles.
     pub(crate) fn bin_eye_tiles(&self, scene: &mut SceneBuffers, footprints: &Footprints, camera: &GpuCamera) -> bool {
-        let tiles = self.traces_eye_tiles().then(|| footprints.bin(camera, scene.width, scene.height)).flatten();
+        let tiles = self.profile.eye_tiles.then(|| footprints.bin(camera, scene.width, scene.height)).flatten();
         let limit = self.device.limits().max_storage_buffer_binding_size;
         let tiles = tiles.filter(|t| (t.words.len() as u64) * 4 <= limit);
         let prims = scene.eye_tiles.prims.clone();
@@ -56,19 +52,8 @@ impl Renderer {
             Some(t) => self.eye_tile_binding(&t.words, prims, Some(*camera)),
             None => self.eye_tile_binding(&[0; 2], prims, None),
         };
-        scene.specialization.eye_tiles = tiles.is_some();
+        scene.tuning.eye_tiles = tiles.is_some();
         tiles.is_some()
-    }
-
-    /// Whether the kernels can trace eye tiles here: the scene's arrays in
-    /// storage buffers, and subgroup operations on SIMD groups of a size whose
-    /// lanes the primary kernel hands one tile.
-    fn traces_eye_tiles(&self) -> bool {
-        let info = self.device.adapter_info();
-        self.scene_arrays == crate::shaders::SceneArrays::Buffers
-            && self.device.features().contains(wgpu::Features::SUBGROUP)
-            && TILE_SIMD_SIZES.contains(&info.subgroup_min_size)
-            && TILE_SIMD_SIZES.contains(&info.subgroup_max_size)
     }
 
     fn eye_tile_binding(&self, words: &[u32], prims: wgpu::Buffer, camera: Option<GpuCamera>) -> EyeTileBinding {
@@ -93,7 +78,7 @@ impl SceneBuffers {
     /// After the camera in the uniforms became `camera`: the lists serve it
     /// only if they were built for it.
     pub(crate) fn aim_eye_tiles(&mut self, camera: &GpuCamera) {
-        self.specialization.eye_tiles = self.eye_tiles.camera.as_ref() == Some(camera);
+        self.tuning.eye_tiles = self.eye_tiles.camera.as_ref() == Some(camera);
     }
 }
 

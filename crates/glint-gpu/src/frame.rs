@@ -65,9 +65,10 @@ impl Renderer {
         // The build includes laying the tree out for the kernel.
         let start = Instant::now();
         let bvh = match acceleration {
-            // A tree that fits the kernels' uniform buffers is read faster
-            // there than any SAH tree larger by a little (Specialization::uniform_tree).
-            Acceleration::Bvh => Bvh::build_within(&bounds, UNIFORM_TREE_RECORDS as usize),
+            // On a device that reads a tree from uniform buffers, one that fits
+            // them is read faster than any SAH tree larger by a little.
+            Acceleration::Bvh if self.profile.uniform_tree => Bvh::build_within(&bounds, UNIFORM_TREE_RECORDS as usize),
+            Acceleration::Bvh => Bvh::build(&bounds),
             Acceleration::BruteForce => Bvh::single_leaf(&bounds),
         };
         let gpu_bvh = bvh.gpu()?;
@@ -114,7 +115,7 @@ impl Renderer {
         }
         let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.bvh_root());
         self.write_uniforms(buffers, &uniforms)?;
-        if !buffers.specialization.eye_tiles && prepared.eye_tiles_build.is_some() {
+        if !buffers.tuning.eye_tiles && prepared.eye_tiles_build.is_some() {
             self.bin_eye_tiles(buffers, &prepared.footprints, &uniforms.camera);
         }
         prepared.depth_extent = depth_extent(&gpu_types::primitive_bounds(scene), scene.camera.eye);

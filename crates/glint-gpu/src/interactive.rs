@@ -13,6 +13,7 @@ use glint_scene::specialization::Specialization;
 use crate::pipelines::create_pipeline;
 use crate::renderer::STAT_BYTES;
 use crate::shaders::{Kernel, ShaderSource};
+use crate::tuning::Tuning;
 use crate::{GpuError, RayStats, Region, RenderOptions, Renderer, SceneBuffers};
 
 /// Bytes of one accumulation pixel (rgb sum and sample count).
@@ -88,7 +89,7 @@ impl SceneBuffers {
 impl Renderer {
     /// Compiles the present kernel from `source`.
     pub fn present_pipeline(&self, source: &ShaderSource) -> Result<PresentPipeline, GpuError> {
-        let pipeline = create_pipeline(&self.device, source, Kernel::Present, Specialization::ALL, self.scene_arrays, None)?;
+        let pipeline = create_pipeline(&self.device, source, Kernel::Present, (Specialization::ALL, Tuning::PLAIN), None)?;
         Ok(PresentPipeline { pipeline })
     }
 

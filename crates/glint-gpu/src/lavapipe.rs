@@ -1,5 +1,7 @@
 //! What Glint asks of lavapipe, Mesa's software Vulkan driver, before the first
-//! device is made, and what it warns about once one is open.
+//! device is made, and what it warns about once one is open. The variables
+//! are read by lavapipe alone (and Mesa's shader cache by Mesa's drivers); the
+//! device profile (profile.rs) lets them count only when the adapter is lavapipe.
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -39,7 +41,7 @@ const WIDE_WIDTH: &str = "256";
 /// 2026-12-06).
 pub const LONG_RENDER_MIN_SAMPLES: u64 = 4_000_000;
 
-/// `prepare_lavapipe` chose the width, and the shader cache by it, for the
+/// `prepare_driver_environment` chose the width, and the shader cache by it, for the
 /// environment chose neither: `compile_for_samples` may choose again.
 static WIDTH_CHOSEN: AtomicBool = AtomicBool::new(false);
 static CACHE_CHOSEN: AtomicBool = AtomicBool::new(false);
@@ -53,7 +55,7 @@ static CACHE_CHOSEN: AtomicBool = AtomicBool::new(false);
 ///
 /// # Safety
 /// Changes the process environment: call it before any other thread runs.
-pub unsafe fn prepare_lavapipe() {
+pub unsafe fn prepare_driver_environment() {
     let width = std::env::var_os(LAVAPIPE_WIDTH_ENV).unwrap_or_else(|| {
         // SAFETY: the caller guarantees no other thread reads the environment.
         unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, LAVAPIPE_WIDTH) };
@@ -70,7 +72,7 @@ pub unsafe fn prepare_lavapipe() {
 /// cache home to put it in.
 ///
 /// # Safety
-/// As [`prepare_lavapipe`].
+/// As [`prepare_driver_environment`].
 unsafe fn cache_by_width(width: &OsString) {
     let home = |name| std::env::var_os(name).filter(|v| !v.is_empty());
     if let Some(dir) = shader_cache_dir(width, home("XDG_CACHE_HOME"), home("HOME")) {
@@ -106,7 +108,7 @@ pub fn width_for(samples: u64, quick: bool) -> &'static str {
 /// device is made.
 ///
 /// # Safety
-/// Changes the process environment: call it after [`prepare_lavapipe`] and
+/// Changes the process environment: call it after [`prepare_driver_environment`] and
 /// before any other thread runs.
 pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
     // SAFETY: the caller's guarantee.
@@ -153,16 +155,9 @@ unsafe fn choose_kernels(quick: bool, samples: u64) {
 
 /// The SIMD width of a lavapipe adapter's kernels, in bits, from its name
 /// ("llvmpipe (LLVM 15.0.6, 256 bits)").
-pub fn vector_bits(info: &wgpu::AdapterInfo) -> Option<u32> {
+pub(crate) fn vector_bits(info: &wgpu::AdapterInfo) -> Option<u32> {
     let name = info.name.strip_suffix(" bits)")?;
     name[name.rfind(' ')? + 1..].parse().ok()
-}
-
-/// On a lavapipe adapter, the kernels this process compiles: whether they
-/// skip LLVM's optimisation passes ([`kernels_compile_quickly`]) and their
-/// SIMD width in bits ([`vector_bits`]).
-pub fn lavapipe_kernels(info: &wgpu::AdapterInfo) -> Option<(bool, Option<u32>)> {
-    info.name.contains("llvmpipe").then(|| (kernels_compile_quickly(), vector_bits(info)))
 }
 
 /// Whether a command of `samples` samples is better served by quick kernels:
@@ -175,7 +170,7 @@ pub fn quick_compile_pays(samples: u64, rendered_before: bool) -> bool {
 
 /// Whether the kernels this process compiles on lavapipe skip LLVM's
 /// optimisation passes, as its `GALLIVM_PERF` asks.
-pub fn kernels_compile_quickly() -> bool {
+pub(crate) fn kernels_compile_quickly() -> bool {
     std::env::var(LAVAPIPE_PERF_ENV).is_ok_and(|flags| flags.split([',', ' ']).any(|flag| flag == QUICK_COMPILE_FLAG))
 }
 
@@ -194,7 +189,7 @@ pub struct RenderedScenes {
 
 impl RenderedScenes {
     /// The record of the shader cache this process uses (call it after
-    /// [`prepare_lavapipe`], which names the cache).
+    /// [`prepare_driver_environment`], which names the cache).
     pub fn of_shader_cache() -> Self {
         let cache = std::env::var_os(SHADER_CACHE_ENV).filter(|dir| !dir.is_empty() && !shader_cache_disabled());
         Self { dir: cache.map(|dir| PathBuf::from(dir).join("glint-rendered-scenes")) }

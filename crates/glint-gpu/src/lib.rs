@@ -3,7 +3,7 @@
 //! accumulated samples and reads the image back.
 //!
 //! The modules that are a subsystem of their own are public (`shaders`,
-//! `interactive`, `probe`, `display`, `schedule`, `stitch`); the host
+//! `interactive`, `probe`, `display`, `schedule`, `stitch`, `kernel_dump`); the host
 //! pipeline's types are used from the crate root.
 
 mod device;
@@ -11,10 +11,12 @@ pub mod display;
 mod eye_tiles;
 mod frame;
 pub mod interactive;
+pub mod kernel_dump;
 mod lavapipe;
 mod output;
 mod pipelines;
 pub mod probe;
+mod profile;
 mod renderer;
 mod scene_textures;
 pub mod schedule;
@@ -22,12 +24,15 @@ pub mod shaders;
 mod sink;
 pub mod stitch;
 mod tiles;
+mod tuning;
 
-pub use device::{adapter_rank, backends, Gpu, ADAPTER_ENV};
+pub use device::{adapter_rank, backends, driver_warning, Gpu, ADAPTER_ENV, NO_ADAPTER_HINT};
 pub use lavapipe::{
-    compile_for_samples, compile_for_viewer, kernels_compile_quickly, lavapipe_kernels, old_lavapipe_warning, prepare_lavapipe, shader_cache_disabled, vector_bits, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
+    compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
+pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
+pub use tuning::Tuning;
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,

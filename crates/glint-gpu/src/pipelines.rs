@@ -1,5 +1,6 @@
 //! The kernels' compute pipelines, each created the first time something
-//! needs it, for the `Specialization` of the scene it runs on. A command
+//! needs it, for the `Specialization` of the scene it runs on and the
+//! `Tuning` the device profile chose for it. A command
 //! creates only the pipelines it uses (each creation translates a kernel, tens
 //! of milliseconds), and a software rasteriser, which compiles a kernel to CPU
 //! code when it first runs (seconds on a fresh machine), compiles only the
@@ -12,6 +13,7 @@ use glint_scene::specialization::Specialization;
 
 use crate::renderer::one_line;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
+use crate::tuning::Tuning;
 use crate::GpuError;
 
 pub(crate) struct Pipelines {
@@ -19,8 +21,7 @@ pub(crate) struct Pipelines {
     source: ShaderSource,
     /// The layout of the kernels bound to a scene (trace, primary).
     scene_layout: wgpu::PipelineLayout,
-    arrays: SceneArrays,
-    built: Mutex<HashMap<(Kernel, Specialization), wgpu::ComputePipeline>>,
+    built: Mutex<HashMap<(Kernel, Specialization, Tuning), wgpu::ComputePipeline>>,
     /// Held while a pipeline is created, so that two threads needing the same
     /// one (the viewer's warm-up and its first canvas) create it once: a second
     /// pipeline would be compiled again at its first dispatch.
@@ -39,24 +40,22 @@ impl Pipelines {
     ) -> Result<Self, GpuError> {
         if let ShaderSource::Dir(_) = source {
             for kernel in Kernel::ALL {
-                source.compose(kernel, Specialization::ALL, arrays)?.validate()?;
+                source.compose(kernel, Specialization::ALL, Tuning { arrays, ..Tuning::PLAIN })?.validate()?;
             }
         }
         Ok(Self {
             device: device.clone(),
             source: source.clone(),
             scene_layout,
-            arrays,
             built: Mutex::new(HashMap::new()),
             creating: Mutex::new(()),
         })
     }
 
-    /// The pipeline of `kernel` for scenes of `specialization`, created now if
-    /// it has not been.
-    pub fn get(&self, kernel: Kernel, specialization: Specialization) -> Result<wgpu::ComputePipeline, GpuError> {
-        let specialization = kernel.compiled_for(specialization);
-        let key = (kernel, specialization);
+    /// The pipeline of `kernel` for scenes of `specialization` tuned as
+    /// `tuning` says, created now if it has not been.
+    pub fn get(&self, kernel: Kernel, specialization: Specialization, tuning: Tuning) -> Result<wgpu::ComputePipeline, GpuError> {
+        let key = (kernel, kernel.compiled_for(specialization), tuning.for_kernel(kernel));
         let built = || self.built.lock().unwrap_or_else(|e| e.into_inner()).get(&key).cloned();
         if let Some(pipeline) = built() {
             return Ok(pipeline);
@@ -66,7 +65,7 @@ impl Pipelines {
             return Ok(pipeline);
         }
         let layout = matches!(kernel, Kernel::Trace | Kernel::Primary | Kernel::Diffuse).then_some(&self.scene_layout);
-        let pipeline = create_pipeline(&self.device, &self.source, kernel, specialization, self.arrays, layout)?;
+        let pipeline = create_pipeline(&self.device, &self.source, kernel, (key.1, key.2), layout)?;
         self.built.lock().unwrap_or_else(|e| e.into_inner()).insert(key, pipeline.clone());
         Ok(pipeline)
     }
@@ -74,17 +73,19 @@ impl Pipelines {
     /// The kernels with a pipeline so far, for any specialisation.
     pub fn kernels(&self) -> Vec<Kernel> {
         let built = self.built();
-        Kernel::ALL.into_iter().filter(|&kernel| built.iter().any(|&(built, _)| built == kernel)).collect()
+        Kernel::ALL.into_iter().filter(|&kernel| built.iter().any(|&(built, ..)| built == kernel)).collect()
     }
 
-    /// Each pipeline so far: its kernel and the specialisation it was compiled for.
-    pub fn built(&self) -> Vec<(Kernel, Specialization)> {
+    /// Each pipeline so far: its kernel, and the specialisation and tuning it
+    /// was compiled for.
+    pub fn built(&self) -> Vec<(Kernel, Specialization, Tuning)> {
         self.built.lock().unwrap_or_else(|e| e.into_inner()).keys().copied().collect()
     }
 
-    /// Creates the pipelines of `kernels` for `specialization` that do not exist yet.
-    pub fn create(&self, kernels: &[Kernel], specialization: Specialization) -> Result<(), GpuError> {
-        kernels.iter().try_for_each(|&kernel| self.get(kernel, specialization).map(drop))
+    /// Creates the pipelines of `kernels` for `specialization` and `tuning`
+    /// that do not exist yet.
+    pub fn create(&self, kernels: &[Kernel], specialization: Specialization, tuning: Tuning) -> Result<(), GpuError> {
+        kernels.iter().try_for_each(|&kernel| self.get(kernel, specialization, tuning).map(drop))
     }
 }
 
@@ -96,14 +97,13 @@ pub(crate) fn create_pipeline(
     device: &wgpu::Device,
     source: &ShaderSource,
     kernel: Kernel,
-    specialization: Specialization,
-    arrays: SceneArrays,
+    (specialization, tuning): (Specialization, Tuning),
     layout: Option<&wgpu::PipelineLayout>,
 ) -> Result<wgpu::ComputePipeline, GpuError> {
     let entry = kernel.entry_point();
     // Parsed and validated here, with errors that name file and line; wgpu
     // takes the IR as it is rather than parsing the WGSL again.
-    let ir = source.compose(kernel, specialization, arrays)?.validate()?;
+    let ir = source.compose(kernel, specialization, tuning)?.validate()?;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let descriptor = wgpu::ShaderModuleDescriptor {
         label: Some(entry),

@@ -78,7 +78,7 @@ impl Prober {
         });
         // Compiled for every kind: for the kinds a scene holds it runs the same code
         // as the trace kernel specialised to that scene.
-        let pipeline = create_pipeline(device, source, Kernel::Probe, Specialization::ALL, renderer.scene_arrays, Some(&pipeline_layout))?;
+        let pipeline = create_pipeline(device, source, Kernel::Probe, (Specialization::ALL, renderer.plain_tuning()), Some(&pipeline_layout))?;
         Ok(Self { pipeline, layout })
     }
 

@@ -16,7 +16,9 @@ use crate::eye_tiles::{self, EyeTileBinding};
 use crate::pipelines::Pipelines;
 use crate::schedule::{BandScheduler, BATCH_TARGET};
 use crate::scene_textures;
+use crate::profile::DeviceProfile;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
+use crate::tuning::Tuning;
 use crate::tiles::Region;
 use crate::{display, GpuError, Image};
 
@@ -80,7 +82,9 @@ pub struct Renderer {
     pub(crate) scene_layout: wgpu::BindGroupLayout,
     /// Group 1 of those kernels: the view's eye tiles, which the primary kernel reads.
     pub(crate) eye_tiles_layout: wgpu::BindGroupLayout,
-    pub(crate) scene_arrays: SceneArrays,
+    /// Every choice made for the device: how the kernels read the scene and
+    /// are tuned, and whether the host resolves read-backs.
+    pub(crate) profile: DeviceProfile,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
     /// Band sizes of batch renders, kept from frame to frame so the next one
@@ -89,10 +93,6 @@ pub struct Renderer {
     /// The most pixels a tile may have, below what the device's buffer limits
     /// allow (`None`: only those limits).
     max_tile_pixels: Option<u64>,
-    /// Whether the host resolves read-backs with the resolve kernel's CPU twin.
-    /// On a CPU adapter the resolve kernel's compile (~0.1 s on lavapipe, paid
-    /// by every cold render) costs far more than the host's pass over a tile.
-    resolves_on_host: bool,
 }
 
 /// A scene uploaded for one image size.
@@ -118,17 +118,26 @@ pub struct SceneBuffers {
     /// What the kernels that render it are compiled for: the primitive kinds,
     /// the shading terms, and the view when a command renders one alone.
     pub specialization: Specialization,
+    /// How those kernels are tuned for the device (its profile's choice).
+    pub tuning: Tuning,
 }
 
 impl Renderer {
-    /// A renderer whose kernels read the scene's arrays as this process's
-    /// kernels read them best ([`SceneArrays::for_this_process`]).
+    /// A renderer that makes the choices of the device's profile.
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
-        Self::reading(device, queue, source, SceneArrays::for_this_process())
+        let profile = DeviceProfile::of_device(&device);
+        Self::with_profile(device, queue, source, profile)
     }
 
-    /// A renderer whose kernels read the scene's arrays from `arrays`.
+    /// A renderer whose kernels read the scene's arrays from `arrays`, whatever
+    /// the device's profile would choose.
     pub fn reading(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, arrays: SceneArrays) -> Result<Self, GpuError> {
+        let profile = DeviceProfile::of_device(&device).reading(arrays);
+        Self::with_profile(device, queue, source, profile)
+    }
+
+    fn with_profile(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
+        let arrays = profile.scene_arrays;
         let scene_layout = scene_bind_group_layout(&device, arrays);
         let eye_tiles_layout = eye_tiles::bind_group_layout(&device);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -143,13 +152,12 @@ impl Renderer {
             *record.lock().unwrap_or_else(|e| e.into_inner()) = Some(format!("{reason:?}: {message}"));
         });
         Ok(Self {
-            resolves_on_host: device.adapter_info().device_type == wgpu::DeviceType::Cpu,
             device,
             queue,
             pipelines,
             scene_layout,
             eye_tiles_layout,
-            scene_arrays: arrays,
+            profile,
             lost,
             bands: Mutex::new(BandScheduler::before_compile(BATCH_TARGET)),
             max_tile_pixels: None,
@@ -168,16 +176,27 @@ impl Renderer {
         &self.device
     }
 
+    /// The choices made for this device.
+    pub fn profile(&self) -> &DeviceProfile {
+        &self.profile
+    }
+
+    /// Single rays reading the scene as this renderer binds it: for kernels
+    /// that serve any scene (the probe's).
+    pub(crate) fn plain_tuning(&self) -> Tuning {
+        Tuning { arrays: self.profile.scene_arrays, ..Tuning::PLAIN }
+    }
+
     /// Creates the pipelines of `kernels` for `scene` now (those not made
     /// yet), so a shader the driver rejects fails before any work is done.
     pub fn create_pipelines(&self, scene: &SceneBuffers, kernels: &[Kernel]) -> Result<(), GpuError> {
-        self.pipelines.create(kernels, scene.specialization)
+        self.pipelines.create(kernels, scene.specialization, scene.tuning)
     }
 
     /// Creates now the pipelines that dispatches of `views` on `scene` use.
     pub fn create_view_pipelines(&self, scene: &SceneBuffers, views: &[View]) -> Result<(), GpuError> {
         for &view in views {
-            self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view))?;
+            self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view), scene.tuning)?;
         }
         Ok(())
     }
@@ -198,7 +217,7 @@ impl Renderer {
             ("polygon vertices and normals", bytemuck::cast_slice(&scene.points)),
             ("BVH grids", bytemuck::cast_slice(&scene.grids)),
         ];
-        let array_limits = match self.scene_arrays {
+        let array_limits = match self.profile.scene_arrays {
             SceneArrays::Textures => vec![("max_texture_dimension_2d", scene_textures::capacity(limits.max_texture_dimension_2d))],
             SceneArrays::Buffers => vec![
                 ("max_storage_buffer_binding_size", u64::from(limits.max_storage_buffer_binding_size)),
@@ -215,7 +234,7 @@ impl Renderer {
         }
         let (buffers, views);
         let mut prims_buffer = None;
-        let [prims, nodes, points, grids]: [wgpu::BindingResource; 4] = match self.scene_arrays {
+        let [prims, nodes, points, grids]: [wgpu::BindingResource; 4] = match self.profile.scene_arrays {
             SceneArrays::Buffers => {
                 buffers = arrays.map(|(what, contents)| {
                     let usage = wgpu::BufferUsages::STORAGE;
@@ -241,10 +260,11 @@ impl Renderer {
         let materials = uniform("materials", bytemuck::cast_slice(&scene.materials));
         let uniforms_buffer = uniform("scene uniforms", bytemuck::bytes_of(&uniforms));
         let specialization = Specialization::of(scene, &uniforms);
+        let tuning = self.profile.tuning(scene);
         // Bound whether or not the kernels read them; zeros for a tree too large.
         let tree_uniform = |label: &str, records: &[u8]| {
             let mut contents = vec![0; UNIFORM_ARRAY_BYTES];
-            if specialization.uniform_tree {
+            if tuning.uniform_tree {
                 contents[..records.len()].copy_from_slice(records);
             }
             uniform(label, &contents)
@@ -285,7 +305,7 @@ impl Renderer {
             layout: &self.scene_layout,
             entries: &entries,
         });
-        let scene_bytes = match self.scene_arrays {
+        let scene_bytes = match self.profile.scene_arrays {
             SceneArrays::Textures => arrays.iter().map(|(_, b)| scene_textures::device_bytes(b.len())).sum(),
             SceneArrays::Buffers => arrays.iter().map(|(_, b)| b.len() as u64).sum(),
         };
@@ -304,6 +324,7 @@ impl Renderer {
             lights,
             scene_bytes,
             specialization,
+            tuning,
         })
     }
 
@@ -352,9 +373,9 @@ impl Renderer {
         tile: &mut dyn FnMut(Region, Image) -> Result<(), GpuError>,
     ) -> Result<RayStats, GpuError> {
         check_region(scene, region)?;
-        self.pipelines.get(kernel_for(options.view), scene.specialization.dispatching(options.view))?;
-        if !self.resolves_on_host {
-            self.pipelines.get(Kernel::Resolve, Specialization::ALL)?;
+        self.pipelines.get(kernel_for(options.view), scene.specialization.dispatching(options.view), scene.tuning)?;
+        if !self.profile.resolves_on_host {
+            self.pipelines.get(Kernel::Resolve, Specialization::ALL, Tuning::PLAIN)?;
         }
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = (|| {
@@ -486,9 +507,10 @@ impl Renderer {
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<(), GpuError> {
         let kernel = kernel_for(view);
-        let mut specialization = scene.specialization.dispatching(view);
-        specialization.eye_tiles &= eye_tiles::tiles_align(&region);
-        let pipeline = self.pipelines.get(kernel, specialization)?;
+        let specialization = scene.specialization.dispatching(view);
+        let mut tuning = scene.tuning;
+        tuning.eye_tiles &= eye_tiles::tiles_align(&region);
+        let pipeline = self.pipelines.get(kernel, specialization, tuning)?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());
@@ -496,7 +518,7 @@ impl Renderer {
         pass.set_bind_group(0, &scene.scene_bind, &[]);
         pass.set_bind_group(1, &scene.eye_tiles.bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
-        let [across, down] = kernel.workgroup_size().map(|n| n * kernel.block_side(specialization));
+        let [across, down] = kernel.workgroup_size().map(|n| n * tuning.block_side(kernel));
         pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);
         Ok(())
     }
@@ -525,20 +547,21 @@ impl Renderer {
         self.pipelines.kernels()
     }
 
-    /// Each pipeline created so far, by kernel and the specialisation it was
-    /// compiled for (a software rasteriser compiles each at its first dispatch).
-    pub fn pipelines_created(&self) -> Vec<(Kernel, Specialization)> {
+    /// Each pipeline created so far, by kernel and the specialisation and
+    /// tuning it was compiled for (a software rasteriser compiles each at its
+    /// first dispatch).
+    pub fn pipelines_created(&self) -> Vec<(Kernel, Specialization, Tuning)> {
         self.pipelines.built()
     }
 
     /// Whether renders resolve on the host (a CPU adapter) instead of with the
     /// resolve kernel.
     pub fn resolves_on_host(&self) -> bool {
-        self.resolves_on_host
+        self.profile.resolves_on_host
     }
 
     fn resolve_buffer(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
-        if !self.resolves_on_host {
+        if !self.profile.resolves_on_host {
             return self.resolve_on_device(samples, width, height, options);
         }
         let bytes = u64::from(width * height) * PIXEL_BYTES;
@@ -551,7 +574,7 @@ impl Renderer {
     }
 
     fn resolve_on_device(&self, samples: &wgpu::Buffer, width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
-        let resolve = self.pipelines.get(Kernel::Resolve, Specialization::ALL)?;
+        let resolve = self.pipelines.get(Kernel::Resolve, Specialization::ALL, Tuning::PLAIN)?;
         let pixels = width * height;
         let bytes = u64::from(pixels) * PIXEL_BYTES;
         let params = ResolveParams {

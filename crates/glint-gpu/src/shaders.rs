@@ -2,8 +2,9 @@
 //! point and its own bindings), `shaders/lib/` the shared code. A file states
 //! what it uses in a line `// import: a b c` (files of `lib/`, without the
 //! extension); a kernel is the generated prelude of constants shared with the
-//! host (`gpu_types::wgsl_prelude`) and the flags of the scene it is
-//! specialised to (`Specialization`), followed by the files its imports reach,
+//! host (`gpu_types::wgsl_prelude`), the flags of the scene it is
+//! specialised to (`Specialization`) and of the device's tuning (`Tuning`),
+//! followed by the files its imports reach,
 //! each once, every file after the files it imports. So a kernel's file list
 //! is derived from the code, and holds only what the kernel uses. Errors are
 //! mapped back to the file and line they came from.
@@ -15,6 +16,7 @@ use std::path::{Path, PathBuf};
 
 use glint_scene::specialization::Specialization;
 
+use crate::tuning::Tuning;
 use crate::GpuError;
 
 /// Embeds every shader file, named once: the list hot reload watches.
@@ -104,20 +106,10 @@ impl Kernel {
 
     /// What this kernel is compiled for when a scene's kernels are
     /// specialised to `specialization`: only what changes its code, so that
-    /// its renders share one pipeline (and one entry of Mesa's disk cache)
-    /// whatever else differs. Only the primary kernel traces packets.
+    /// its renders share one pipeline whatever else differs (its tuning:
+    /// `Tuning::for_kernel`).
     pub fn compiled_for(self, specialization: Specialization) -> Specialization {
-        match self {
-            Kernel::Primary => Specialization { eye_tiles: specialization.eye_tiles && specialization.packets, ..specialization },
-            _ if self.is_specialised() => Specialization { packets: true, eye_tiles: false, ..specialization },
-            _ => Specialization::ALL,
-        }
-    }
-
-    /// The side of the square block of pixels one invocation traces: 2 for
-    /// the primary kernel with ray packets (Specialization::packets), else 1.
-    pub fn block_side(self, specialization: Specialization) -> u32 {
-        if self == Kernel::Primary && specialization.packets { 2 } else { 1 }
+        if self.is_specialised() { specialization } else { Specialization::ALL }
     }
 
     /// The invocations of one workgroup across and down (`@workgroup_size`)
@@ -169,7 +161,7 @@ pub struct Composed {
 }
 
 /// How errors name the generated prelude.
-const PRELUDE: &str = "the generated prelude (gpu_types.rs, specialization.rs)";
+const PRELUDE: &str = "the generated prelude (gpu_types.rs, specialization.rs, tuning.rs)";
 
 impl Composed {
     /// Turns a line of the composed source into "file:line".
@@ -183,11 +175,17 @@ impl Composed {
 
     /// Parses and validates with naga, naming the file and line of any error.
     pub fn validate(&self) -> Result<naga::Module, GpuError> {
+        self.validate_with(naga::valid::Capabilities::all())
+    }
+
+    /// Parses and validates with naga for a device of `capabilities` (tests
+    /// hold the kernels to WebGPU's), naming the file and line of any error.
+    pub fn validate_with(&self, capabilities: naga::valid::Capabilities) -> Result<naga::Module, GpuError> {
         let module = naga::front::wgsl::parse_str(&self.source).map_err(|e| {
             let place = e.location(&self.source).map_or(String::new(), |l| self.locate(l.line_number as usize));
             GpuError::Shader(format!("{place}: {}", e.message()))
         })?;
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), capabilities)
             .validate(&module)
             .map_err(|e| {
                 let place = e
@@ -213,8 +211,8 @@ pub const EYE_BLOCK_IMPORT: &str = "lib/eye_block.wgsl";
 /// The files [`EYE_BLOCK_IMPORT`] stands for: through the BVH, through eye tiles.
 pub const EYE_BLOCK_FILES: [&str; 2] = ["lib/eye_bvh.wgsl", "lib/eye_tiles.wgsl"];
 
-fn eye_block_file(specialization: Specialization) -> &'static str {
-    EYE_BLOCK_FILES[usize::from(specialization.eye_tiles)]
+fn eye_block_file(tuning: Tuning) -> &'static str {
+    EYE_BLOCK_FILES[usize::from(tuning.eye_tiles)]
 }
 
 /// How the kernels read the scene's arrays (primitives, BVH records and
@@ -247,12 +245,6 @@ impl SceneArrays {
         }
     }
 
-    /// What this process's kernels read best: textures when lavapipe compiles
-    /// them without optimisation passes (`GALLIVM_PERF=nopt`, read once per
-    /// process, before the first device).
-    pub fn for_this_process() -> Self {
-        if crate::lavapipe::kernels_compile_quickly() { SceneArrays::Textures } else { SceneArrays::Buffers }
-    }
 }
 
 impl ShaderSource {
@@ -273,13 +265,14 @@ impl ShaderSource {
         }
     }
 
-    /// The kernel's source for scenes of `specialization` whose arrays reach
-    /// it as `arrays` says: the prelude, then every file its imports reach.
-    pub fn compose(&self, kernel: Kernel, specialization: Specialization, arrays: SceneArrays) -> Result<Composed, GpuError> {
+    /// The kernel's source for scenes of `specialization` on a device that
+    /// tunes it as `tuning` says: the prelude, then every file its imports reach.
+    pub fn compose(&self, kernel: Kernel, specialization: Specialization, tuning: Tuning) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
-        self.visit(kernel.file(), (arrays, specialization), &mut Vec::new(), &mut order)?;
+        self.visit(kernel.file(), tuning, &mut Vec::new(), &mut order)?;
         let mut source = glint_scene::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
+        source.push_str(&tuning.wgsl());
         let mut starts = vec![(PRELUDE.to_string(), 1)];
         for (name, text) in order {
             starts.push((name, source.lines().count() + 1));
@@ -292,20 +285,13 @@ impl ShaderSource {
     }
 
     /// Appends `name` to `order` after everything it imports (depth first),
-    /// the import of the scene's arrays as the file `arrays` names and that of
-    /// the eye block's walk as the specialisation's; `path` is the chain of
-    /// imports being followed, to report a cycle.
-    fn visit(
-        &self,
-        name: &str,
-        choices: (SceneArrays, Specialization),
-        path: &mut Vec<String>,
-        order: &mut Vec<(String, String)>,
-    ) -> Result<(), GpuError> {
-        let (arrays, specialization) = choices;
+    /// the import of the scene's arrays and that of the eye block's walk as
+    /// the files `tuning` chooses; `path` is the chain of imports being
+    /// followed, to report a cycle.
+    fn visit(&self, name: &str, tuning: Tuning, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
         let name = match name {
-            SCENE_ARRAYS_IMPORT => arrays.file(),
-            EYE_BLOCK_IMPORT => eye_block_file(specialization),
+            SCENE_ARRAYS_IMPORT => tuning.arrays.file(),
+            EYE_BLOCK_IMPORT => eye_block_file(tuning),
             name => name,
         };
         if order.iter().any(|(done, _)| done == name) {
@@ -317,7 +303,7 @@ impl ShaderSource {
         let text = self.read(name)?;
         path.push(name.to_string());
         for import in imports(&text) {
-            self.visit(&import, choices, path, order)?;
+            self.visit(&import, tuning, path, order)?;
         }
         path.pop();
         order.push((name.to_string(), text));

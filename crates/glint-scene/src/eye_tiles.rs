@@ -4,7 +4,7 @@
 //! "Ray-specialized acceleration structures for ray tracing", 2008), built on
 //! the host for each view.
 //!
-//! Why: lavapipe runs a SIMD group's lanes through the BVH each on its own
+//! Why: a software rasteriser runs a SIMD group's lanes through the BVH each on its own
 //! path, loading every node and primitive once per lane. The lanes of a tile's
 //! SIMD group instead walk one short list together, so each primitive is loaded
 //! once for all of them (shaders/lib/eye_tiles.wgsl), and the walk stops when

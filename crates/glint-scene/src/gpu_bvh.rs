@@ -13,7 +13,7 @@
 //! just tested; only a node it returns to from the stack (and the root) needs
 //! its grid loaded, from [`GpuBvh::grids`].
 //!
-//! Why: on a software rasteriser (lavapipe) every load whose address differs
+//! Why: on a software rasteriser every load whose address differs
 //! between SIMD lanes is done lane by lane and component by component, so a
 //! node visit costs what it loads. Two f32 child boxes and two child indices
 //! are 14 components; a record is 4. Boxes are rounded outwards, so a ray that

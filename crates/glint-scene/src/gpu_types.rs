@@ -128,13 +128,13 @@ shared_constants! {
     MAX_LIGHTS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>()) as u32;
     MAX_MATERIALS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuMaterial>()) as u32;
     /// The BVH records (and as many grids) a uniform buffer holds: the kernels
-    /// of a scene whose tree fits read it from there (`Specialization::uniform_tree`).
+    /// of a scene whose tree fits read it from there (glint-gpu's `Tuning::uniform_tree`).
     UNIFORM_TREE_RECORDS: u32 = (UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuNode>()) as u32;
 
     /// The scene's arrays (primitives, BVH records and grids, polygon points)
     /// reach the kernels as textures of this many 16-byte texels a row
-    /// (`prim_at` and its siblings in shaders/lib/scene_textures.wgsl): lavapipe
-    /// fetches a texel per lane without the branch that a storage buffer's
+    /// (`prim_at` and its siblings in shaders/lib/scene_textures.wgsl): a software
+    /// rasteriser fetches a texel per lane without the branch that a storage buffer's
     /// bounds check takes per lane and component (docs/performance.md, "The
     /// scene's arrays in textures"). A power of two, divided by with a shift.
     SCENE_TEXTURE_WIDTH: u32 = 1024;

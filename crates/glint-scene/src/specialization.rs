@@ -1,4 +1,6 @@
-//! What a kernel is compiled for. A software rasteriser compiles each kernel
+//! What a scene needs its kernels to hold, the scene's half of what a kernel
+//! is compiled for (how the kernels are tuned for the device is the other
+//! half: glint-gpu's `Tuning`). A software rasteriser compiles each kernel
 //! to CPU code when it is first used, and the time it takes grows with the code
 //! it is given: a kernel specialised to a scene carries no intersection code for
 //! primitive kinds the scene does not hold, no interpolated normals when no
@@ -12,7 +14,7 @@
 use crate::MAX_DEPTH_LIMIT;
 use crate::gpu_types::{
     GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
-    MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE, UNIFORM_TREE_RECORDS,
+    MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
 };
 
 /// The primitive kinds a kernel can intersect, whether its ray tree goes past
@@ -44,30 +46,11 @@ pub struct Specialization {
     /// The one view every dispatch renders, or `None`: each dispatch says
     /// (the viewer's kernels, a render that writes AOVs besides its image).
     pub view: Option<View>,
-    /// The primary kernel traces the eye rays of 2×2 blocks of pixels as ray
-    /// packets: faster per ray, slower to compile (see `for_eye_rays`).
-    pub packets: bool,
     /// The deepest ray tree the kernel traces (`uniforms.max_depth` may be no
     /// more): its stack of pending rays holds that many, each of them zeroed
     /// when a pixel starts, so a shallower tree compiles less.
     pub max_depth: u32,
-    /// The BVH's records and grids fit `UNIFORM_TREE_RECORDS`, so the kernel
-    /// reads them from uniform buffers, which lavapipe loads per lane without
-    /// the branch each lane's load from a storage buffer takes. The storage
-    /// buffers hold the tree too, for kernels compiled without this.
-    pub uniform_tree: bool,
-    /// The primary kernel's packets take their eye rays' primitives from their
-    /// tile's list (`eye_tiles`) instead of the BVH: set by the renderer when
-    /// it has binned the scene for the view, and only for a device whose SIMD
-    /// groups it can hand whole tiles (subgroup operations, four or eight lanes).
-    pub eye_tiles: bool,
 }
-
-/// Eye rays from which a command's primary kernel traces packets: fewer trace
-/// sooner one at a time, whose kernel lavapipe compiles faster. Measured on
-/// tetra and teapot (docs/performance.md), packets repay their extra compile
-/// after about two million eye rays; a warm shader cache repays it at once.
-pub const PACKET_EYE_RAYS: u64 = 2_000_000;
 
 impl Specialization {
     /// Everything: for a kernel that must serve any scene.
@@ -86,10 +69,7 @@ impl Specialization {
         tinted_shadows: true,
         depth_cue: true,
         view: None,
-        packets: true,
         max_depth: MAX_DEPTH_LIMIT,
-        uniform_tree: false,
-        eye_tiles: false,
     };
 
     /// What `scene` needs: its primitives' kinds, the terms of the materials
@@ -116,10 +96,7 @@ impl Specialization {
             tinted_shadows: uniforms.flags & FLAG_TINTED_SHADOWS != 0,
             depth_cue: uniforms.flags & FLAG_DEPTH_CUE != 0,
             view: None,
-            packets: true,
             max_depth: uniforms.max_depth.max(1),
-            uniform_tree: fits_uniform_tree(scene),
-            eye_tiles: false,
         };
         for p in &scene.prims {
             match p.kind() {
@@ -141,8 +118,8 @@ impl Specialization {
     /// can make, whatever the scene's are: for a scene whose materials, lights
     /// and settings change in place (the viewer's).
     pub fn editable(self) -> Specialization {
-        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, eye_tiles, .. } = self;
-        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, packets, uniform_tree, eye_tiles, ..Specialization::ALL }
+        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, .. } = self;
+        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, ..Specialization::ALL }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -151,12 +128,6 @@ impl Specialization {
     pub fn for_views(self, views: &[View]) -> Specialization {
         let one = views.split_first().filter(|(first, rest)| rest.iter().all(|v| v == *first));
         Specialization { view: one.map(|(&view, _)| view), ..self }
-    }
-
-    /// For a command that traces `eye_rays` eye rays with its primary kernel
-    /// in all (a one-off render): packets from `PACKET_EYE_RAYS` on.
-    pub fn for_eye_rays(self, eye_rays: u64) -> Specialization {
-        Specialization { packets: eye_rays >= PACKET_EYE_RAYS, ..self }
     }
 
     /// The specialisation a dispatch of `view` runs: this one when it is for
@@ -188,7 +159,7 @@ impl Specialization {
             && uniforms.max_depth <= self.max_depth
     }
 
-    fn flags(self) -> [(&'static str, bool); 14] {
+    fn flags(self) -> [(&'static str, bool); 13] {
         [
             ("HAS_SPHERES", self.spheres),
             ("HAS_TRIANGLES", self.triangles),
@@ -203,7 +174,6 @@ impl Specialization {
             ("HAS_ATTENUATION", self.attenuation),
             ("HAS_TINTED_SHADOWS", self.tinted_shadows),
             ("HAS_DEPTH_CUE", self.depth_cue),
-            ("UNIFORM_TREE", self.uniform_tree),
         ]
     }
 
@@ -211,15 +181,9 @@ impl Specialization {
     pub fn wgsl(self) -> String {
         let mut wgsl: String = self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect();
         wgsl.push_str(&format!("const ONLY_VIEW: u32 = {}u;\n", self.view.map_or(ANY_VIEW, |view| view as u32)));
-        wgsl.push_str(&format!("const PACKETS: bool = {};\n", self.packets));
         wgsl.push_str(&format!("const MAX_DEPTH: u32 = {}u;\n", self.max_depth));
         wgsl
     }
-}
-
-fn fits_uniform_tree(scene: &GpuScene) -> bool {
-    let records = UNIFORM_TREE_RECORDS as usize;
-    scene.nodes.len() <= records && scene.grids.len() <= records
 }
 
 fn spawns_secondary_rays(m: &GpuMaterial) -> bool {
@@ -263,11 +227,6 @@ impl std::fmt::Display for Specialization {
         if let Some(view) = self.view {
             write!(f, ", {} view only", format!("{view:?}").to_lowercase())?;
         }
-        if !self.packets {
-            f.write_str(", single eye rays")?;
-        } else if self.eye_tiles {
-            f.write_str(", eye tiles")?;
-        }
         Ok(())
     }
 }
@@ -275,7 +234,6 @@ impl std::fmt::Display for Specialization {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu_bvh::{GpuGrid, GpuNode};
     use crate::gpu_types::GpuPrim;
     use bytemuck::Zeroable;
 
@@ -314,10 +272,7 @@ mod tests {
             tinted_shadows: false,
             depth_cue: false,
             view: None,
-            packets: true,
             max_depth: 1,
-            uniform_tree: true,
-            eye_tiles: false,
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones, no refraction");
@@ -325,7 +280,6 @@ mod tests {
         every.prims[2].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
-        every.nodes = vec![GpuNode::zeroed(); UNIFORM_TREE_RECORDS as usize + 1];
         let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, max_depth: MAX_DEPTH_LIMIT, ..SceneUniforms::zeroed() };
         assert_eq!(Specialization::of(&every, &uniforms), Specialization::ALL);
     }
@@ -410,22 +364,6 @@ mod tests {
     }
 
     #[test]
-    fn a_tree_that_fits_a_uniform_buffer_is_read_from_one() {
-        let mut mesh = scene(&[PRIM_TRIANGLE], 0.0);
-        let records = UNIFORM_TREE_RECORDS as usize;
-        (mesh.nodes, mesh.grids) = (vec![GpuNode::zeroed(); records], vec![GpuGrid::zeroed(); records]);
-        let fits = of(&mesh);
-        assert!(fits.uniform_tree && fits.editable().uniform_tree);
-        assert!(fits.wgsl().contains("const UNIFORM_TREE: bool = true;"));
-        mesh.nodes.push(GpuNode::zeroed());
-        assert!(!of(&mesh).uniform_tree, "one record too many");
-        mesh.nodes.pop();
-        mesh.grids.push(GpuGrid::zeroed());
-        assert!(!of(&mesh).uniform_tree, "one grid too many");
-        assert!(!Specialization::ALL.uniform_tree, "a kernel for any scene reads the storage buffers");
-    }
-
-    #[test]
     fn every_flag_is_a_wgsl_constant() {
         let wgsl = of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
@@ -446,15 +384,5 @@ mod tests {
         assert_eq!(kinds.dispatching(View::Normal), kinds);
         assert!(depth.wgsl().contains(&format!("const ONLY_VIEW: u32 = {}u;", View::Depth as u32)));
         assert!(kinds.wgsl().contains(&format!("const ONLY_VIEW: u32 = {ANY_VIEW}u;")));
-    }
-
-    #[test]
-    fn a_one_off_render_traces_packets_only_when_they_repay_their_compile() {
-        let kinds = of(&scene(&[PRIM_TRIANGLE], 0.0));
-        assert!(kinds.packets && kinds.wgsl().contains("const PACKETS: bool = true;"));
-        let small = kinds.for_eye_rays(512 * 512);
-        assert!(!small.packets && small.wgsl().contains("const PACKETS: bool = false;"));
-        assert_eq!(small.to_string(), "triangles, eye rays only, single eye rays");
-        assert!(kinds.for_eye_rays(PACKET_EYE_RAYS).packets);
     }
 }

@@ -132,7 +132,7 @@ impl ViewerApp {
             selection: Selection::default(),
             image: TracedImage::new(rs.device.clone(), Arc::clone(&rs.renderer), max_side),
             inspector: Inspector::default(),
-            notice: glint_gpu::old_lavapipe_warning(&info).map(|warning| (warning, true)),
+            notice: glint_gpu::driver_warning(&info).map(|warning| (warning, true)),
             errors: Errors::default(),
             first_image: options.first_image,
         };

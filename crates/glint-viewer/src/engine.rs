@@ -39,8 +39,8 @@ impl Kernels {
     }
 
     /// Has the device compile the kernel a canvas of `scene` first dispatches
-    /// for `view`, by tracing one pixel. lavapipe compiles a kernel at its
-    /// first dispatch, on its queue's one thread; done as soon as kernels and
+    /// for `view`, by tracing one pixel. A software rasteriser compiles a
+    /// kernel at its first dispatch, on its queue's one thread; done as soon as kernels and
     /// scene are both there, that compile runs while the window starts rather
     /// than after the first frame, which gives the canvas its size.
     pub fn warm_up(&self, scene: &Scene, view: View) -> Result<(), GpuError> {
@@ -50,8 +50,8 @@ impl Kernels {
     }
 }
 
-/// A canvas's kernels compile the view it is made for alone, which lavapipe
-/// compiles sooner than kernels for every view (the first image 3–4 % sooner,
+/// A canvas's kernels compile the view it is made for alone, which a software
+/// rasteriser compiles sooner than kernels for every view (the first image 3–4 % sooner,
 /// docs/performance.md); a dispatch of another view gets the kernels for every
 /// view, once (`Specialization::dispatching`).
 fn specialise(prepared: &mut Prepared, view: View) {
@@ -78,10 +78,11 @@ impl Canvas {
         prepared.buffers.check_whole_image()?;
         specialise(&mut prepared, view);
         // Here, off the UI thread, for the scene's own terms; the first edit
-        // beyond them widens them. Only the view's: lavapipe creates a pipeline
-        // under the lock its queue holds while it compiles, so a second one
-        // here would hold the canvas back until the first compile is done.
-        // Picking's is created at the first pick, which compiles it anyway.
+        // beyond them widens them. Only the view's: a software rasteriser may
+        // create a pipeline under the lock its queue holds while it compiles,
+        // so a second one here would hold the canvas back until the first
+        // compile is done. Picking's is created at the first pick, which
+        // compiles it anyway.
         kernels.renderer.create_view_pipelines(&prepared.buffers, &[view])?;
         let target = kernels.renderer.present_target(&kernels.present, &prepared.buffers);
         let counter = kernels.renderer.ray_counter();
@@ -92,7 +93,7 @@ impl Canvas {
     /// are written: an edit beyond the scene's own terms (a matte scene's first
     /// mirror, a light that fades, depth cueing turned on, a deeper ray tree)
     /// switches to the kernels with every term, once. Until then the kernels
-    /// carry only what the scene uses, which lavapipe compiles in about two
+    /// carry only what the scene uses, which a software rasteriser compiles in about two
     /// thirds of the time, so the first image comes sooner.
     pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight], uniforms: &SceneUniforms, view: View) -> Result<(), GpuError> {
         let specialization = &mut self.prepared.buffers.specialization;
@@ -252,30 +253,31 @@ mod tests {
     use std::sync::Arc;
 
     use glint_gpu::shaders::{Kernel, ShaderSource};
+    use glint_gpu::Tuning;
     use glint_scene::gpu_types::View;
-    use glint_scene::specialization::Specialization;
 
     use super::{Canvas, Kernels};
 
     #[test]
     fn the_warm_up_compiles_the_kernel_the_first_canvas_dispatches() {
-        let gpu = glint_gpu::Gpu::new().expect("a device (lavapipe in CI)");
+        let gpu = glint_gpu::Gpu::new().expect("a device (a software one in CI)");
         let kernels = Arc::new(Kernels::compile(&gpu.device, &gpu.queue, &ShaderSource::Embedded).unwrap());
         let scene = glint_scene::load(Path::new("spd:tetra:1")).unwrap();
         kernels.warm_up(&scene, View::Shaded).unwrap();
         let warmed = kernels.renderer.pipelines_created();
         let canvas = Canvas::new(Arc::clone(&kernels), &scene, View::Shaded, (40, 30), 1).unwrap();
-        let specialization = canvas.prepared.buffers.specialization;
+        let (specialization, tuning) = (canvas.prepared.buffers.specialization, canvas.prepared.buffers.tuning);
         assert_eq!(specialization.view, Some(View::Shaded), "the canvas's kernels are for its first view alone");
-        assert_eq!(warmed, [(Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)))]);
+        let trace = (Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)), tuning.for_kernel(Kernel::Trace));
+        assert_eq!(warmed, [trace]);
         assert_eq!(kernels.renderer.pipelines_created(), warmed, "the canvas needs no other pipeline for its first image");
         // Picking gets the primary kernel for every view; its one pixel is no
         // eye tile's corner, so the kernel that walks the BVH.
         canvas.renderer().pick(&canvas.prepared.buffers, 20, 15).unwrap();
         let mut created = kernels.renderer.pipelines_created();
         created.retain(|p| !warmed.contains(p));
-        let picking = Specialization { eye_tiles: false, ..specialization.dispatching(View::Id) };
-        assert_eq!(created, [(Kernel::Primary, Kernel::Primary.compiled_for(picking))]);
+        let picking = Tuning { eye_tiles: false, ..tuning }.for_kernel(Kernel::Primary);
+        assert_eq!(created, [(Kernel::Primary, Kernel::Primary.compiled_for(specialization.dispatching(View::Id)), picking)]);
         assert_eq!(specialization.dispatching(View::Id).view, None);
     }
 }

@@ -164,8 +164,6 @@ fn choose_adapter(adapters: &[wgpu::Adapter], surface: Option<&wgpu::Surface<'_>
     }
     usable.sort_by_key(|a| glint_gpu::adapter_rank(a));
     usable.first().map(|a| (*a).clone()).ok_or_else(|| {
-        "no GPU adapter with compute shaders can draw to this window: install a Vulkan driver \
-(without a GPU, lavapipe: `bash .ci/setup`)"
-            .into()
+        format!("no GPU adapter with compute shaders can draw to this window: {}", glint_gpu::NO_ADAPTER_HINT)
     })
 }

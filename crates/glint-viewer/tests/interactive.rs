@@ -53,7 +53,7 @@ radius = 0.6
 
 fn gpu() -> &'static Gpu {
     static GPU: OnceLock<Gpu> = OnceLock::new();
-    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter (lavapipe in CI): {e}")))
+    GPU.get_or_init(|| Gpu::new().unwrap_or_else(|e| panic!("GPU tests need an adapter (a software adapter in CI): {e}")))
 }
 
 fn renderer() -> &'static Renderer {

@@ -1,4 +1,4 @@
-//! The viewer driven headless by egui_kittest on the GPU (lavapipe in CI): it
+//! The viewer driven headless by egui_kittest on the GPU (a software adapter in CI): it
 //! loads and renders a scene, sliders and clicks change the image and the
 //! selection, files reload, and the whole window matches a snapshot under FLIP.
 //! No adapter is a failure, never a skip.

@@ -15,7 +15,7 @@ use glint_gpu::shaders::ShaderSource;
 use glint_viewer::{ViewerApp, ViewerOptions};
 use image::RgbaImage;
 
-/// Long enough for lavapipe to compile the kernels on a busy machine.
+/// Long enough for a software adapter to compile the kernels on a busy machine.
 pub const TIMEOUT: Duration = Duration::from_secs(120);
 
 pub const SCENE: &str = r#"

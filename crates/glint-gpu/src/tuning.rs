@@ -1,0 +1,145 @@
+//! How a kernel is tuned for the device: the device's half of what a kernel
+//! is compiled for (glint-scene's `Specialization` is the scene's half). The
+//! device profile chooses it (profile.rs); every tuning traces the same bits
+//! (tests/packet.rs, tests/scene_arrays.rs).
+
+use glint_scene::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
+
+use crate::shaders::{Kernel, SceneArrays};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Tuning {
+    /// How the kernels read the scene's arrays (one way per renderer: its
+    /// bind group layout holds that kind of binding).
+    pub arrays: SceneArrays,
+    /// The primary kernel traces the eye rays of 2×2 blocks of pixels as ray
+    /// packets: faster per ray, slower to compile.
+    pub packets: bool,
+    /// The kernels read the BVH's records and grids from uniform buffers,
+    /// which the scene's tree fits ([`fits_uniform_tree`]). The storage
+    /// buffers hold the tree too, for kernels tuned without this.
+    pub uniform_tree: bool,
+    /// The primary kernel's packets take their eye rays' primitives from their
+    /// tile's list (`eye_tiles`) instead of the BVH: set by the renderer when
+    /// it has binned the scene for the view, on a device whose profile allows it.
+    pub eye_tiles: bool,
+}
+
+impl Tuning {
+    /// One ray at a time through the BVH, everything in storage buffers: the
+    /// code as the lecture reads it, and what any device runs.
+    pub const PLAIN: Tuning = Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false };
+
+    /// Every tuning a profile can choose (eye tiles only over storage
+    /// buffers): for tests and dumps of every kernel.
+    pub fn all() -> Vec<Tuning> {
+        let mut all = Vec::new();
+        for arrays in SceneArrays::ALL {
+            for bits in 0..8u32 {
+                let [packets, uniform_tree, eye_tiles] = [0, 1, 2].map(|b| bits & (1 << b) != 0);
+                if !eye_tiles || arrays == SceneArrays::Buffers {
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles });
+                }
+            }
+        }
+        all
+    }
+
+    /// A name for file names: its choices joined by dashes ("buffers" alone
+    /// for the plain tuning).
+    pub fn name(self) -> String {
+        let arrays = match self.arrays {
+            SceneArrays::Buffers => "buffers",
+            SceneArrays::Textures => "textures",
+        };
+        let choices = [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles")];
+        std::iter::once(arrays).chain(choices.iter().filter(|(on, _)| *on).map(|(_, name)| *name)).collect::<Vec<_>>().join("-")
+    }
+
+    /// Whether its kernels need the device's subgroup operations.
+    pub fn needs_subgroups(self) -> bool {
+        self.eye_tiles
+    }
+
+    /// What `kernel` is compiled with when a scene's kernels are tuned this
+    /// way: only what changes its code, so that its renders share one
+    /// pipeline (and one entry of a driver's disk cache) whatever else
+    /// differs. Only the primary kernel traces packets.
+    pub fn for_kernel(self, kernel: Kernel) -> Tuning {
+        match kernel {
+            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, ..self },
+            _ if kernel.is_specialised() => Tuning { packets: false, eye_tiles: false, ..self },
+            _ => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
+        }
+    }
+
+    /// The side of the square block of pixels one invocation of `kernel`
+    /// traces: 2 for the primary kernel with packets, else 1.
+    pub fn block_side(self, kernel: Kernel) -> u32 {
+        if kernel == Kernel::Primary && self.packets { 2 } else { 1 }
+    }
+
+    /// The WGSL constants that carry it, appended to a kernel's prelude.
+    pub fn wgsl(self) -> String {
+        format!("const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\n", self.uniform_tree, self.packets)
+    }
+}
+
+/// Whether `scene`'s BVH records and grids fit the uniform buffers of
+/// `UNIFORM_TREE_RECORDS` each.
+pub fn fits_uniform_tree(scene: &GpuScene) -> bool {
+    let records = UNIFORM_TREE_RECORDS as usize;
+    scene.nodes.len() <= records && scene.grids.len() <= records
+}
+
+impl std::fmt::Display for Tuning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match (self.packets, self.eye_tiles) {
+            (false, _) => "single eye rays",
+            (true, false) => "ray packets",
+            (true, true) => "eye tiles",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bytemuck::Zeroable;
+    use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
+
+    #[test]
+    fn a_tree_that_fits_a_uniform_buffer_is_read_from_one() {
+        let mut scene = GpuScene {
+            prims: Vec::new(),
+            nodes: vec![GpuNode::zeroed(); UNIFORM_TREE_RECORDS as usize],
+            grids: vec![GpuGrid::zeroed(); UNIFORM_TREE_RECORDS as usize],
+            bvh_root: 0,
+            materials: Vec::new(),
+            lights: Vec::new(),
+            points: Vec::new(),
+            light_count: 0,
+        };
+        assert!(fits_uniform_tree(&scene));
+        scene.nodes.push(GpuNode::zeroed());
+        assert!(!fits_uniform_tree(&scene), "one record too many");
+        scene.nodes.pop();
+        scene.grids.push(GpuGrid::zeroed());
+        assert!(!fits_uniform_tree(&scene), "one grid too many");
+        let tuned = Tuning { uniform_tree: true, ..Tuning::PLAIN };
+        assert!(tuned.wgsl().contains("const UNIFORM_TREE: bool = true;") && tuned.wgsl().contains("const PACKETS: bool = false;"));
+    }
+
+    #[test]
+    fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
+        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true };
+        assert_eq!(fast.for_kernel(Kernel::Primary), fast);
+        assert_eq!(fast.block_side(Kernel::Primary), 2);
+        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, ..Tuning::PLAIN });
+        assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
+        assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
+        let no_packets = Tuning { packets: false, ..fast };
+        assert!(!no_packets.for_kernel(Kernel::Primary).eye_tiles, "eye tiles are walked by packets");
+        assert_eq!(no_packets.block_side(Kernel::Primary), 1);
+    }
+}

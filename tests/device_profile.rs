@@ -1,0 +1,49 @@
+//! The device profile on CI's adapter, lavapipe: the renderer makes
+//! lavapipe's choices and a scene's kernels are tuned by them; the device is
+//! opened with WebGPU's default limits and raised to the adapter's only for a
+//! scene that needs it.
+
+mod support;
+
+use glint_gpu::shaders::SceneArrays;
+use glint_gpu::{Acceleration, GpuError, Tuning, PACKET_EYE_RAYS};
+
+#[test]
+fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
+    let gpu = support::gpu();
+    assert!(gpu.info().name.contains("llvmpipe"), "the tests run on lavapipe: {}", gpu.info().name);
+    let profile = *support::renderer().profile();
+    assert_eq!(profile, gpu.profile());
+    let kernels = profile.kernels.expect("lavapipe's kernels are described");
+    assert!(!kernels.quick && kernels.vector_bits.is_some(), "{kernels:?}");
+    assert_eq!(profile.scene_arrays, SceneArrays::Buffers);
+    assert!(profile.packets && profile.uniform_tree && profile.eye_tiles && profile.resolves_on_host, "{profile:?}");
+    assert_eq!(profile.packet_eye_rays, PACKET_EYE_RAYS);
+    assert!(profile.describe().starts_with("lavapipe profile"), "{}", profile.describe());
+
+    let scene = glint_scene::load(std::path::Path::new("spd:tetra:2")).unwrap();
+    let prepared = support::renderer().prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
+    let tuned = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true };
+    assert_eq!(prepared.buffers.tuning, tuned);
+}
+
+#[test]
+fn devices_open_with_webgpus_default_limits_and_raise_one_a_scene_needs() {
+    let gpu = support::gpu();
+    let (limits, defaults, offered) = (gpu.device.limits(), wgpu::Limits::default(), gpu.adapter.limits());
+    assert_eq!(limits.max_storage_buffers_per_shader_stage, defaults.max_storage_buffers_per_shader_stage);
+    assert_eq!(limits.max_storage_buffer_binding_size, defaults.max_storage_buffer_binding_size);
+    assert_eq!(limits.max_texture_dimension_2d, defaults.max_texture_dimension_2d);
+
+    let need = |limit| GpuError::Limit { what: "primitives".into(), limit, need: 1 << 40, have: 0 };
+    assert!(offered.max_texture_dimension_2d > defaults.max_texture_dimension_2d, "lavapipe offers more than the default");
+    let raised = gpu.raised_for(&need("max_texture_dimension_2d")).expect("a limit the adapter has more of").unwrap();
+    assert_eq!(raised.device.limits().max_texture_dimension_2d, offered.max_texture_dimension_2d);
+    assert_eq!(raised.device.limits().max_storage_buffers_per_shader_stage, defaults.max_storage_buffers_per_shader_stage);
+    match gpu.raised_for(&need("max_storage_buffer_binding_size")) {
+        None => assert_eq!(offered.max_storage_buffer_binding_size, limits.max_storage_buffer_binding_size, "the adapter has more"),
+        Some(raised) => assert_eq!(raised.unwrap().device.limits().max_storage_buffer_binding_size, offered.max_storage_buffer_binding_size),
+    }
+    assert!(raised.raised_for(&need("max_texture_dimension_2d")).is_none(), "raised once, the error stands");
+    assert!(gpu.raised_for(&GpuError::Runtime("lost".into())).is_none());
+}
