@@ -55,7 +55,7 @@ fn info_names_the_adapter_and_limits() {
     let o = glint(&["info"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let stdout = String::from_utf8(o.stdout).unwrap();
-    for needle in ["adapter:", "backend:", "device type:", "driver:", "max storage buffer binding size", "max buffer size", "max workgroup size"] {
+    for needle in ["adapter:", "backend:", "device type:", "driver:", "profile:", "max storage buffer binding size", "max buffer size", "max workgroup size"] {
         assert!(stdout.contains(needle), "{needle} missing in:\n{stdout}");
     }
 }
@@ -242,6 +242,36 @@ fn unwritable_output_fails_with_code_5_and_leaves_nothing() {
     assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
     assert!(stderr(&o).contains("out.png"), "{}", stderr(&o));
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// `glint kernels --dump` writes one WGSL file per kernel and tuning, each
+/// listed in kernels.json with its entry point, and prints their paths; a
+/// directory it cannot make fails with one line and exit code 5.
+#[test]
+fn kernels_are_dumped_one_file_each_with_a_manifest() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("kernels");
+    let o = glint(&["kernels", "--dump", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("kernels.json")).unwrap()).unwrap();
+    let entries = manifest.as_array().unwrap();
+    let printed = String::from_utf8(o.stdout).unwrap();
+    assert_eq!(printed.lines().count(), entries.len() + 1, "{printed}");
+    for entry in entries {
+        let file = entry["file"].as_str().unwrap();
+        let wgsl = std::fs::read_to_string(out.join(file)).unwrap();
+        let entry_point = entry["entry_point"].as_str().unwrap();
+        assert!(wgsl.contains(&format!("fn {entry_point}(")), "{file} lacks {entry_point}");
+        assert_eq!(wgsl.starts_with("enable subgroups;"), entry["subgroups"].as_bool().unwrap(), "{file}");
+    }
+    for kernel in ["trace", "primary", "diffuse", "resolve", "present", "probe"] {
+        assert!(out.join(format!("{kernel}.buffers.wgsl")).exists(), "no plain {kernel} kernel");
+    }
+    let blocked = dir.path().join("file");
+    std::fs::write(&blocked, "").unwrap();
+    let o = glint(&["kernels", "--dump", blocked.join("kernels").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
 }
 
 #[test]
