@@ -60,7 +60,13 @@ fn info_names_the_adapter_and_limits() {
     }
 }
 
-/// `glint` with the lavapipe width `width` (`None`: the environment chooses
+/// The name of the shader cache glint gives the software adapter's kernels of `width` bits.
+fn cache_of(width: impl std::fmt::Display) -> String {
+    let dir = glint_gpu::shader_cache_dir(&width.to_string().into(), Some("/".into()), None).unwrap();
+    dir.file_name().unwrap().to_string_lossy().into_owned()
+}
+
+/// `glint` with the software adapter's vector width `width` (`None`: the environment chooses
 /// none) and Mesa's shader cache on, under the cache home `cache_home`.
 fn glint_at_width(width: Option<&str>, cache_home: &Path, args: &[&str]) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
@@ -77,12 +83,12 @@ fn glint_at_width(width: Option<&str>, cache_home: &Path, args: &[&str]) -> Outp
     command.output().expect("glint runs")
 }
 
-/// On lavapipe `glint` asks for the SIMD width its kernels compile fastest
+/// On the software adapter `glint` asks for the SIMD width its kernels compile fastest
 /// at, unless the environment chooses one; the width changes no pixel, and
 /// kernels one width compiled are never loaded at another (Mesa's cache does
 /// not tell them apart, and such a kernel crashes the process).
 #[test]
-fn lavapipe_gets_the_width_glint_asks_for_and_it_changes_no_pixel() {
+fn the_software_adapter_gets_the_width_glint_asks_for_and_it_changes_no_pixel() {
     let dir = tempfile::tempdir().unwrap();
     let cache = dir.path().join("cache");
     let adapter = |width| {
@@ -102,22 +108,23 @@ fn lavapipe_gets_the_width_glint_asks_for_and_it_changes_no_pixel() {
         std::fs::read(out).unwrap()
     };
     let wide = render(Some("256"), "wide.exr");
-    assert!(render(None, "asked.exr") == wide, "the image depends on lavapipe's vector width");
+    assert!(render(None, "asked.exr") == wide, "the image depends on the vector width");
     let mut caches: Vec<_> = std::fs::read_dir(&cache).unwrap().map(|e| e.unwrap().file_name()).collect();
     caches.sort();
     assert_eq!(caches, ["glint"], "Mesa's shared cache was used");
     let mut widths: Vec<_> = std::fs::read_dir(cache.join("glint")).unwrap().map(|e| e.unwrap().file_name()).collect();
     widths.sort();
-    assert_eq!(widths, [format!("lavapipe-{}", glint_gpu::LAVAPIPE_WIDTH).as_str(), "lavapipe-256"]);
+    assert_eq!(widths, [cache_of(glint_gpu::LAVAPIPE_WIDTH), cache_of(256)].map(std::ffi::OsString::from));
 }
 
 #[test]
 fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scenes().join("showcase.toml");
-    // The image's bytes and whether lavapipe's kernels skipped LLVM's passes,
+    // The image's bytes and whether the kernels skipped LLVM's passes,
     // for a render of `size` pixels at `spp` with the shader cache under
-    // `cache_home` (None: disabled) and `perf` as GALLIVM_PERF (None: unset).
+    // `cache_home` (None: disabled) and `perf` as the driver's performance
+    // flags (None: unset).
     let render = |cache_home: Option<&str>, perf: Option<&str>, size: &str, spp: &str| {
         let out = dir.path().join("out.exr");
         let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
@@ -138,8 +145,8 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         let o = command.output().expect("glint runs");
         assert!(o.status.success(), "{}", stderr(&o));
         let stats: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--stats --json prints JSON");
-        let bits = stats["vector_bits"].as_u64().expect("lavapipe reports its width");
-        let quick = stats["quick_kernels"].as_bool().expect("lavapipe reports its kernels");
+        let bits = stats["vector_bits"].as_u64().expect("the software adapter reports its width");
+        let quick = stats["quick_kernels"].as_bool().expect("the software adapter reports its kernels");
         let samples = size.parse::<u64>().unwrap().pow(2) * spp.parse::<u64>().unwrap();
         let width = glint_gpu::width_for(samples, quick);
         assert_eq!(bits.to_string(), width, "the width of {} kernels for {samples} samples", if quick { "quick" } else { "optimised" });
@@ -157,11 +164,11 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         names.sort();
         names
     };
-    let mut expected = vec![format!("lavapipe-{}", glint_gpu::LAVAPIPE_WIDTH), format!("lavapipe-{quick_bits}")];
+    let mut expected = vec![cache_of(glint_gpu::LAVAPIPE_WIDTH), cache_of(quick_bits)];
     expected.dedup();
     assert_eq!(widths("a"), expected);
     assert!(render(None, None, "96", "1").1, "without a shader cache a scene rendered before compiled optimised kernels");
-    assert!(!render(Some("b"), Some(""), "96", "1").1, "an empty GALLIVM_PERF did not keep the optimised kernels");
+    assert!(!render(Some("b"), Some(""), "96", "1").1, "empty performance flags did not keep the optimised kernels");
     // Just over the limit in samples, not in pixels.
     let side = (glint_gpu::QUICK_COMPILE_MAX_SAMPLES / 16).isqrt() + 1;
     assert!(!render(Some("c"), None, &side.to_string(), "16").1, "a render of {} samples compiled quick kernels", side * side * 16);
@@ -170,7 +177,7 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
     let spp = glint_gpu::LONG_RENDER_MIN_SAMPLES.div_ceil(48 * 48);
     let (_, was_quick, long_bits) = render(Some("d"), None, "48", &spp.to_string());
     assert!(!was_quick, "a long render compiled quick kernels");
-    assert!(widths("d").contains(&format!("lavapipe-{long_bits}")), "no cache of the long render's width: {:?}", widths("d"));
+    assert!(widths("d").contains(&cache_of(long_bits)), "no cache of the long render's width: {:?}", widths("d"));
 }
 
 /// `glint bench` times its warm frames with the kernels a long render runs,

@@ -28,7 +28,7 @@ mod tuning;
 
 pub use device::{adapter_rank, backends, driver_warning, Gpu, ADAPTER_ENV, NO_ADAPTER_HINT};
 pub use lavapipe::{
-    compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
+    compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_dir, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
 pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
