@@ -3,12 +3,13 @@
 //! runs of consecutive workgroups lavapipe deals its threads holds its share
 //! of every strip of the band, whatever the count; and a workgroup's
 //! invocations cover its pixels in 2×2 blocks, a SIMD group's lanes together.
+//! The plain profile's row order traces the same bits.
 
 mod support;
 
 use glint_gpu::shaders::ShaderSource;
 use glint_scene::gpu_types::{
-    BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT, SPREAD_STRIPS, wgsl_prelude,
+    BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT, SPREAD_STRIPS, View, wgsl_prelude,
 };
 use wgpu::util::DeviceExt;
 
@@ -156,6 +157,32 @@ fn every_four_consecutive_invocations_trace_a_2x2_block() {
             let (x, y) = (xs[0], ys[0]);
             assert_eq!(xs, [x, x + 1, x, x + 1], "group {g} of a workgroup of {size:?}: {group:?}");
             assert_eq!(ys, [y, y, y + 1, y + 1], "group {g} of a workgroup of {size:?}: {group:?}");
+        }
+    }
+}
+
+/// The plain profile's row order traces the pixels and counts the rays that
+/// spread order does: for the trace, primary and diffuse kernels, single rays
+/// and packets, in an image whose workgroups overhang its edges.
+#[test]
+fn row_order_traces_what_spread_order_traces() {
+    let renderer = support::renderer();
+    for name in ["tetra:2", "balls:1"] {
+        let scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
+        let mut prepared = renderer.prepare(&scene, 45, 29, glint_gpu::Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+        for view in [View::Shaded, View::Depth, View::Diffuse] {
+            for packets in [false, true] {
+                let options = glint_gpu::RenderOptions { view, spp: 2, ..Default::default() };
+                let mut render = |spread| {
+                    let tuning = &mut prepared.buffers.tuning;
+                    (tuning.packets, tuning.eye_tiles, tuning.spread) = (packets, false, spread);
+                    renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
+                };
+                let ((spread, spread_stats), (rows, row_stats)) = (render(true), render(false));
+                let case = format!("{name}, {view:?} view, packets {packets}");
+                support::assert_images_equal(&rows.linear, &spread.linear, 0, &case);
+                assert_eq!(row_stats, spread_stats, "{case}");
+            }
         }
     }
 }

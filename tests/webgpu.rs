@@ -85,7 +85,7 @@ fn every_kernel_validates_under_webgpu_capabilities_and_default_limits() {
     for variant in KernelVariant::all() {
         assert_portable(variant.kernel, Specialization::ALL, variant.tuning);
     }
-    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true };
+    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
     let kinds = (0..64u32).map(|bits| {
         let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
         Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }

@@ -37,7 +37,7 @@ fn every_kernel_validates_in_every_tuning() {
 /// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
-    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false };
+    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false, spread: true };
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, _)| name == "lib/primitive.wgsl");

@@ -29,9 +29,17 @@ fn dispatch_view() -> u32 {
 
 // The pixel an invocation traces in the current band, if the band covers one;
 // the top-left pixel of its block for a kernel whose invocations trace blocks
-// of `side`×`side` pixels. `size` is the kernel's workgroup size.
+// of `side`×`side` pixels. `size` is the kernel's workgroup size. Workgroups
+// and invocations take their places in row order, or with SPREAD in the
+// order of spread.wgsl.
 fn band_pixel(wid: vec3<u32>, lid: vec3<u32>, groups: vec3<u32>, size: vec2<u32>, side: u32) -> vec2<u32> {
-    return side * (spread_workgroup(wid, groups) * size + spread_invocation(lid, size)) + dispatch.origin;
+    var group = wid.xy;
+    var invocation = lid.xy;
+    if SPREAD {
+        group = spread_workgroup(wid, groups);
+        invocation = spread_invocation(lid, size);
+    }
+    return side * (group * size + invocation) + dispatch.origin;
 }
 
 // Pixel k of the 2×2 block whose top-left pixel is `corner`, left to right,

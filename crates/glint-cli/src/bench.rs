@@ -242,6 +242,7 @@ mod tests {
             uniform_tree: false,
             eye_tiles: false,
             resolves_on_host: false,
+            spread: false,
         };
         for view in [View::Depth, View::Shaded] {
             for packets in [false, true] {

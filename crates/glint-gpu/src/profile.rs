@@ -67,6 +67,10 @@ pub struct DeviceProfile {
     /// Whether the host resolves read-backs instead of the resolve kernel: on
     /// a CPU adapter its compile costs more than the host's pass over a tile.
     pub resolves_on_host: bool,
+    /// Whether dispatches deal their places in spread order (`Tuning::spread`):
+    /// lavapipe hands each thread a run of workgroups and runs SIMD groups of
+    /// consecutive invocations; eye tiles need a SIMD group in one tile.
+    pub spread: bool,
 }
 
 impl DeviceProfile {
@@ -92,6 +96,7 @@ impl DeviceProfile {
             uniform_tree: kernels.is_some(),
             eye_tiles,
             resolves_on_host: info.device_type == wgpu::DeviceType::Cpu,
+            spread: kernels.is_some() || eye_tiles,
         }
     }
 
@@ -115,6 +120,7 @@ impl DeviceProfile {
             packets: self.packets,
             uniform_tree: self.uniform_tree && fits_uniform_tree(scene),
             eye_tiles: false,
+            spread: self.spread,
         }
     }
 
@@ -170,6 +176,7 @@ mod tests {
                 uniform_tree: true,
                 eye_tiles: true,
                 resolves_on_host: true,
+                spread: true,
             };
             assert_eq!(optimised, want);
             let quick = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, true);
@@ -200,6 +207,7 @@ mod tests {
                     uniform_tree: false,
                     eye_tiles: false,
                     resolves_on_host: false,
+                    spread: false,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
                 assert_eq!(profile.describe(), "plain profile");
@@ -212,7 +220,7 @@ mod tests {
     fn a_gpu_whose_subgroups_fit_eye_tiles_walks_them_in_packets() {
         let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
         let profile = DeviceProfile::of(&small_groups, wgpu::Features::SUBGROUP, true);
-        assert!(profile.eye_tiles && profile.packets && profile.packets_for(1), "{profile:?}");
+        assert!(profile.eye_tiles && profile.packets && profile.packets_for(1) && profile.spread, "{profile:?}");
         assert!(!profile.uniform_tree && profile.scene_arrays == SceneArrays::Buffers);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
     }

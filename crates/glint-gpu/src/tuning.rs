@@ -23,22 +23,27 @@ pub struct Tuning {
     /// tile's list (`eye_tiles`) instead of the BVH: set by the renderer when
     /// it has binned the scene for the view, on a device whose profile allows it.
     pub eye_tiles: bool,
+    /// A dispatch's workgroups and a workgroup's invocations take their places
+    /// in the order of shaders/lib/spread.wgsl (for lavapipe's threads and
+    /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
+    pub spread: bool,
 }
 
 impl Tuning {
     /// One ray at a time through the BVH, everything in storage buffers: the
     /// code as the lecture reads it, and what any device runs.
-    pub const PLAIN: Tuning = Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false };
+    pub const PLAIN: Tuning = Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false, spread: false };
 
     /// Every tuning a profile can choose (eye tiles only over storage
     /// buffers): for tests and dumps of every kernel.
     pub fn all() -> Vec<Tuning> {
         let mut all = Vec::new();
         for arrays in SceneArrays::ALL {
-            for bits in 0..8u32 {
-                let [packets, uniform_tree, eye_tiles] = [0, 1, 2].map(|b| bits & (1 << b) != 0);
-                if !eye_tiles || arrays == SceneArrays::Buffers {
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles });
+            for bits in 0..16u32 {
+                let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+                // Eye tiles hand SIMD groups blocks of one tile in spread order.
+                if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread });
                 }
             }
         }
@@ -52,7 +57,8 @@ impl Tuning {
             SceneArrays::Buffers => "buffers",
             SceneArrays::Textures => "textures",
         };
-        let choices = [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles")];
+        let choices =
+            [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles"), (self.spread, "spread")];
         std::iter::once(arrays).chain(choices.iter().filter(|(on, _)| *on).map(|(_, name)| *name)).collect::<Vec<_>>().join("-")
     }
 
@@ -81,7 +87,7 @@ impl Tuning {
 
     /// The WGSL constants that carry it, appended to a kernel's prelude.
     pub fn wgsl(self) -> String {
-        format!("const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\n", self.uniform_tree, self.packets)
+        format!("const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\nconst SPREAD: bool = {};\n", self.uniform_tree, self.packets, self.spread)
     }
 }
 
@@ -132,10 +138,10 @@ mod tests {
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true };
+        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
         assert_eq!(fast.for_kernel(Kernel::Primary), fast);
         assert_eq!(fast.block_side(Kernel::Primary), 2);
-        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, ..Tuning::PLAIN });
+        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, spread: true, ..Tuning::PLAIN });
         assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
         assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
         let no_packets = Tuning { packets: false, ..fast };
