@@ -238,6 +238,18 @@ exec {real} "$@"
         let o = Command::new(env!("CARGO_BIN_EXE_glint")).args(&args).output().unwrap();
         assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
     }
+
+    /// The stitch job succeeded, said what it wrote, and wrote the file of one render.
+    #[track_caller]
+    fn assert_stitched_one_render(&self, stitch: &str) {
+        assert_states(&self.jobs(stitch), "COMPLETED", self);
+        let stitched = self.path("out/showcase.png");
+        let log = std::fs::read_to_string(self.path("logs/stitch.log")).unwrap();
+        assert_eq!(log, format!("glint: stitched {WIDTH}x{HEIGHT} from {SHARDS} parts -> {}\n", stitched.display()));
+        let whole = self.path("whole.png");
+        self.render("showcase.toml", &whole, &[]);
+        assert_same_file(&whole, &stitched);
+    }
 }
 
 #[track_caller]
@@ -272,13 +284,7 @@ fn shards_stitch_into_one_render_also_after_a_killed_shard_is_requeued() {
     assert_states(&tasks, "COMPLETED", &work);
     let restarts: Vec<(&str, &str)> = tasks.iter().map(|t| (t["ArrayTaskId"].as_str(), t["Restarts"].as_str())).collect();
     assert_eq!(restarts.iter().filter(|(_, r)| *r != "0").collect::<Vec<_>>(), [&("2", "1")]);
-    assert_states(&work.jobs(&stitch), "COMPLETED", &work);
-    let stitched = work.path("out/showcase.png");
-    let log = std::fs::read_to_string(work.path("logs/stitch.log")).unwrap();
-    assert_eq!(log, format!("glint: stitched {WIDTH}x{HEIGHT} from {SHARDS} parts -> {}\n", stitched.display()));
-    let whole = work.path("whole.png");
-    work.render("showcase.toml", &whole, &[]);
-    assert_same_file(&whole, &stitched);
+    work.assert_stitched_one_render(&stitch);
 }
 
 #[test]
@@ -298,8 +304,7 @@ fn a_failed_shard_stops_the_stitch_until_it_is_rerun_alone() {
         "glint: the parts leave 768 pixels of the 64x48 image uncovered, the first at (0, 12): \
          shard 1 of 4 is missing: render it again (in a Slurm job array, --array=1)\n"
     );
-    let stitched = work.path("out/showcase.png");
-    assert!(!stitched.exists());
+    assert!(!work.path("out/showcase.png").exists());
 
     // As the stitch says: shard 1 alone, then the stitch again.
     work.fault("fail-1", false);
@@ -308,10 +313,7 @@ fn a_failed_shard_stops_the_stitch_until_it_is_rerun_alone() {
     let rerun = work.jobs(&array);
     assert_eq!(rerun.iter().map(|t| t["ArrayTaskId"].as_str()).collect::<Vec<_>>(), ["1"]);
     assert_states(&rerun, "COMPLETED", &work);
-    assert_states(&work.jobs(&stitch), "COMPLETED", &work);
-    let whole = work.path("whole.png");
-    work.render("showcase.toml", &whole, &[]);
-    assert_same_file(&whole, &stitched);
+    work.assert_stitched_one_render(&stitch);
 }
 
 #[test]
