@@ -79,11 +79,11 @@ pub fn read_placement(image: &Path) -> Result<Placement, String> {
             placement.region, placement.width, placement.height
         ));
     }
-    if let Some((index, count)) = shard {
-        if index >= count || whole.strip(index, count) != placement.region {
-            let (region, width, height) = (placement.region, placement.width, placement.height);
-            return Err(format!("{shown}: the region {region} is not shard {index}/{count} of the {width}x{height} image"));
-        }
+    if let Some((index, count)) = shard
+        && (index >= count || whole.strip(index, count) != placement.region)
+    {
+        let (region, width, height) = (placement.region, placement.width, placement.height);
+        return Err(format!("{shown}: the region {region} is not shard {index}/{count} of the {width}x{height} image"));
     }
     Ok(placement)
 }
