@@ -5,6 +5,7 @@ mod bench_cold;
 mod check;
 mod compare;
 mod frames;
+mod grade;
 mod info;
 mod probe;
 mod legend;

@@ -256,11 +256,16 @@ fn check_report_in_chromium(report: &Path) {
     let dom = stdout(&o);
     assert!(dom.contains("<h1>glint test: "), "{dom}");
     let sources: Vec<&str> = dom.split("<img src=\"").skip(1).map(|rest| rest.split('"').next().unwrap()).collect();
-    assert_eq!(sources, ["sphere-reference.png", "sphere-render.png", "sphere-diff.png"], "{dom}");
+    let expected = ["sphere-reference.png", "sphere-render.png", "sphere-diff.png", "sphere-reference-zoom.png", "sphere-render-zoom.png"];
+    assert_eq!(sources, expected, "{dom}");
     for source in &sources {
         let image = image::open(report.join(source)).unwrap_or_else(|e| panic!("{source}: {e}"));
         assert!(image.width() >= 48, "{source}");
     }
+    // The case's settings, and where it differs: the white block painted at (20, 10).
+    assert!(dom.contains("<p>settings: view shaded, max depth 5, 1 spp, 48x36</p>"), "{dom}");
+    let zoom = image::open(report.join("sphere-reference-zoom.png")).unwrap().to_rgb8();
+    assert!(zoom.pixels().any(|p| p.0 == [255, 255, 255]), "the magnified golden shows the white block");
 
     // A screenshot shows the images drawn: the sphere's red and the sky's blue
     // are colours the page's own text and borders never use.
