@@ -4,64 +4,14 @@
 //! with JUnit XML and an HTML report that headless Chromium loads with its
 //! images.
 
+mod suite;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use quick_xml::events::Event;
-
-fn glint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_glint")).args(args).output().expect("glint runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn arg(path: &Path) -> &str {
-    path.to_str().unwrap()
-}
-
-/// A small scene: a red sphere on a grey floor under one light.
-const SPHERE: &str = r#"
-[image]
-width = 48
-height = 36
-background = [0.1, 0.2, 0.4]
-
-[camera]
-eye = [0, 1.5, 5]
-look_at = [0, 0.5, 0]
-fov = 45
-
-[[light]]
-type = "point"
-position = [3, 5, 4]
-
-[material.red]
-color = [0.9, 0.15, 0.1]
-kd = 0.8
-ks = 0.3
-
-[material.grey]
-color = [0.6, 0.6, 0.6]
-kd = 0.9
-
-[[object]]
-type = "sphere"
-center = [0, 0.8, 0]
-radius = 0.8
-material = "red"
-
-[[object]]
-type = "polygon"
-vertices = [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]
-material = "grey"
-"#;
+use suite::{arg, glint, stderr, stdout, SPHERE};
 
 /// The same picture as NFF: 40 × 30.
 const NFF: &str = "v\nfrom 0 1.5 5\nat 0 0.5 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 40 30\n\

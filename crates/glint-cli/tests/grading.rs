@@ -5,58 +5,11 @@
 //! against a reference Glint renders and one given as a file. That run writes
 //! Gradescope results.json, JUnit, a report per student and a class summary.
 
+mod suite;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn glint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_glint")).args(args).output().expect("glint runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-fn arg(path: &Path) -> &str {
-    path.to_str().unwrap()
-}
-
-/// A red mirror-ish sphere on a grey floor: 48 × 36.
-const SPHERE: &str = r#"
-[image]
-width = 48
-height = 36
-background = [0.1, 0.2, 0.4]
-
-[camera]
-eye = [0, 1.5, 5]
-look_at = [0, 0.5, 0]
-fov = 45
-
-[[light]]
-type = "point"
-position = [3, 5, 4]
-
-[material.red]
-color = [0.9, 0.15, 0.1]
-kd = 0.8
-ks = 0.3
-reflect = 0.3
-
-[material.grey]
-color = [0.6, 0.6, 0.6]
-kd = 0.9
-
-[[object]]
-type = "sphere"
-center = [0, 0.8, 0]
-radius = 0.8
-material = "red"
-
-[[object]]
-type = "polygon"
-vertices = [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]
-material = "grey"
-"#;
+use suite::{arg, glint, stderr, stdout, SPHERE};
 
 const MANIFEST: &str = r#"
 name = "course"
@@ -83,7 +36,7 @@ fn render(scene: &Path, out: &Path, extra: &[&str]) {
     let mut args = vec!["render", arg(scene), "-o", arg(out), "-q"];
     args.extend(extra);
     let o = glint(&args);
-    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
 }
 
 /// The course folder: the manifest, its scene and its reference file, and
@@ -139,8 +92,8 @@ fn a_class_is_graded_in_one_run_with_every_report() {
         "--junit",
         arg(&junit),
     ]);
-    let out = text(&o.stdout);
-    assert_eq!(o.status.code(), Some(0), "{out}{}", text(&o.stderr));
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
     let lines: Vec<&str> = out.lines().collect();
     assert_eq!(lines.len(), 4 * 3 + 1, "{out}");
     assert!(lines[0].starts_with("ok      ann/sphere: flip 0 <= 0.01") && lines[0].ends_with("(10/10 points)"), "{out}");
@@ -211,7 +164,7 @@ fn a_class_is_graded_in_one_run_with_every_report() {
     // Gradescope's per-submission run writes the same results for one student.
     let results = root.join("results.json");
     let o = glint(&["test", arg(&root.join("course.toml")), "--submission", arg(&root.join("subs/bob")), "--gradescope", arg(&results)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o.stderr));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(std::fs::read(&results).unwrap(), std::fs::read(report.join("bob/results.json")).unwrap());
 }
 
@@ -229,13 +182,13 @@ fn grading_errors_are_one_line() {
         let mut all = vec!["test"];
         all.extend(&args);
         let o = glint(&all);
-        let stderr = text(&o.stderr);
+        let stderr = stderr(&o);
         assert_eq!(o.status.code(), Some(code), "{args:?}: {stderr}");
         assert!(stderr.contains(&needle) && stderr.trim_end().lines().count() == 1, "{args:?}: {stderr}");
     }
     // A reference that cannot be made is named, after every student's grades are written.
     std::fs::write(root.join("scenes/sphere.toml"), "[image]\nwidth = \"wide\"\n").unwrap();
     let o = glint(&["test", arg(&manifest), "--submissions", arg(&root.join("subs"))]);
-    assert_eq!(o.status.code(), Some(3), "{}", text(&o.stderr));
-    assert!(text(&o.stderr).starts_with(&format!("glint: case `sphere`: reference: {}:2:", root.join("scenes/sphere.toml").display())), "{}", text(&o.stderr));
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).starts_with(&format!("glint: case `sphere`: reference: {}:2:", root.join("scenes/sphere.toml").display())), "{}", stderr(&o));
 }
