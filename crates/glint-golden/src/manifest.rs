@@ -516,11 +516,16 @@ compare = { metric = "psnr" }
         assert!(suite.select(&["d".into()]).unwrap_err().ends_with("no case named `d`"));
     }
 
+    /// The first TOML block after `heading` in docs/golden-ci.md.
+    fn documented_toml(heading: &str) -> &'static str {
+        let doc = include_str!("../../../docs/golden-ci.md");
+        let start = doc.find(heading).and_then(|i| doc[i..].find("```toml\n").map(|j| i + j + 8)).unwrap();
+        &doc[start..start + doc[start..].find("```").unwrap()]
+    }
+
     #[test]
     fn the_documented_manifest_is_valid() {
-        let doc = include_str!("../../../docs/golden-ci.md");
-        let start = doc.find("### A manifest").and_then(|i| doc[i..].find("```toml\n").map(|j| i + j + 8)).unwrap();
-        let text = &doc[start..start + doc[start..].find("```").unwrap()];
+        let text = documented_toml("### A manifest");
         let dir = tempfile::tempdir().unwrap();
         write(dir.path(), "scenes/gallery/one.toml", "");
         write(dir.path(), "scenes/gallery/big/huge.toml", "");
@@ -533,9 +538,7 @@ compare = { metric = "psnr" }
 
     #[test]
     fn the_documented_grading_manifest_is_valid() {
-        let doc = include_str!("../../../docs/golden-ci.md");
-        let start = doc.find("## Autograding").and_then(|i| doc[i..].find("```toml\n").map(|j| i + j + 8)).unwrap();
-        let text = &doc[start..start + doc[start..].find("```").unwrap()];
+        let text = documented_toml("## Autograding");
         let dir = tempfile::tempdir().unwrap();
         let suite = Suite::from_manifest(&write(dir.path(), "course.toml", text)).unwrap_or_else(|e| panic!("{e}"));
         let graded: Vec<(&str, f64)> = suite.graded.iter().map(|c| (c.name.as_str(), c.scoring.points)).collect();
