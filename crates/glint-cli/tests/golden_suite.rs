@@ -8,10 +8,10 @@ mod suite;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use quick_xml::events::Event;
-use suite::{arg, glint, stderr, stdout, SPHERE};
+use suite::{arg, chromium, glint, stderr, stdout, SPHERE};
 
 /// The same picture as NFF: 40 × 30.
 const NFF: &str = "v\nfrom 0 1.5 5\nat 0 0.5 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 40 30\n\
@@ -175,27 +175,6 @@ fn check_junit(xml: &str, folder: &Path) {
     assert_eq!(suites, 1);
     assert_eq!(testcases, ["ball", "sphere"]);
     assert_eq!(failures, ["sphere"]);
-}
-
-/// Chromium as the environment runs it: headless, no sandbox, no GPU, no
-/// network services, a fresh profile.
-fn chromium(args: &[&str]) -> Output {
-    let profile = tempfile::tempdir().unwrap();
-    let user_data = format!("--user-data-dir={}", profile.path().display());
-    Command::new("chromium")
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--no-first-run",
-            &user_data,
-        ])
-        .args(args)
-        .output()
-        .expect("chromium runs (bash .ci/setup installs it)")
 }
 
 fn check_report_in_chromium(report: &Path) {

@@ -9,7 +9,7 @@ mod suite;
 
 use std::path::Path;
 
-use suite::{arg, glint, stderr, stdout, SPHERE};
+use suite::{arg, chromium, glint, stderr, stdout, SPHERE};
 
 const MANIFEST: &str = r#"
 name = "course"
@@ -159,7 +159,16 @@ fn a_class_is_graded_in_one_run_with_every_report() {
     assert_eq!(class.matches("<tr><td data-sort=").count(), 4, "{class}");
     assert!(class.contains("<td data-sort=\"bob\"><a href=\"bob/index.html\">bob</a></td><td data-sort=\"9\">9/15</td><td class=\"failed\" data-sort=\"4\""), "{class}");
     assert!(class.contains("<th data-type=\"number\">sphere</th><th data-type=\"number\">ball</th>"), "{class}");
-    assert!(class.contains("addEventListener('click'"), "{class}");
+    // Clicking the score's header in Chromium puts the best first; again, last.
+    let click = "document.querySelectorAll('#class th')[1].click();";
+    for (clicks, order) in [(1, ["ann", "bob", "dan", "cat"]), (2, ["cat", "dan", "bob", "ann"])] {
+        let page = report.join(format!("sorted-{clicks}.html"));
+        std::fs::write(&page, class.replace("</body>", &format!("<script>{}</script></body>", click.repeat(clicks)))).unwrap();
+        let o = chromium(&["--dump-dom", &format!("file://{}", page.display())]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let rows: Vec<String> = stdout(&o).split("<tr><td data-sort=\"").skip(1).map(|r| r.split('"').next().unwrap().to_string()).collect();
+        assert_eq!(rows, order, "{clicks} click(s)");
+    }
 
     // Gradescope's per-submission run writes the same results for one student.
     let results = root.join("results.json");

@@ -1,4 +1,5 @@
-//! What the `glint test` suites share: the binary, and a small scene.
+//! What the `glint test` suites share: the binary, Chromium to load their
+//! reports, and a small scene.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -13,6 +14,27 @@ pub fn stdout(o: &Output) -> String {
 
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Chromium as the environment runs it: headless, no sandbox, no GPU, no
+/// network services, a fresh profile.
+pub fn chromium(args: &[&str]) -> Output {
+    let profile = tempfile::tempdir().unwrap();
+    let user_data = format!("--user-data-dir={}", profile.path().display());
+    Command::new("chromium")
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--no-first-run",
+            &user_data,
+        ])
+        .args(args)
+        .output()
+        .expect("chromium runs (bash .ci/setup installs it)")
 }
 
 pub fn arg(path: &Path) -> &str {
