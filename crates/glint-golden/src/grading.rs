@@ -75,6 +75,19 @@ impl Student {
             return Err(format!("{}: no student folders in the submissions directory (one folder per student)", dir.display()));
         }
         students.sort_by(|a, b| a.name.cmp(&b.name));
+        // Two folders whose names differ only in characters a file name
+        // cannot keep would share one report folder.
+        let mut stems = std::collections::HashMap::new();
+        for student in &students {
+            if let Some(earlier) = stems.insert(student.file_stem(), &student.name) {
+                return Err(format!(
+                    "{}: students `{earlier}` and `{}` would share the report folder `{}`",
+                    dir.display(),
+                    student.name,
+                    student.file_stem()
+                ));
+            }
+        }
         Ok(students)
     }
 
@@ -220,4 +233,28 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_i
     outcome.detail = comparison.detail;
     outcome.images = comparison.images;
     outcome
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn students_are_the_folders_in_name_order() {
+        let dir = tempfile::tempdir().unwrap();
+        for folder in ["zoe", "ann", ".git"] {
+            std::fs::create_dir(dir.path().join(folder)).unwrap();
+        }
+        std::fs::write(dir.path().join("notes.txt"), "").unwrap();
+        let names: Vec<String> = Student::all_in(dir.path()).unwrap().into_iter().map(|s| s.name).collect();
+        assert_eq!(names, ["ann", "zoe"]);
+        assert_eq!(Student::one(&dir.path().join("zoe")).name, "zoe");
+        for folder in ["ann lee", "ann-a", "ann_lee"] {
+            std::fs::create_dir(dir.path().join(folder)).unwrap();
+        }
+        let e = Student::all_in(dir.path()).unwrap_err();
+        assert!(e.ends_with("students `ann lee` and `ann_lee` would share the report folder `ann_lee`"), "{e}");
+        let empty = tempfile::tempdir().unwrap();
+        assert!(Student::all_in(empty.path()).unwrap_err().ends_with("no student folders in the submissions directory (one folder per student)"));
+    }
 }
