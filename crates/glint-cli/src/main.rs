@@ -5,6 +5,7 @@ mod bench_cold;
 mod check;
 mod compare;
 mod frames;
+mod grade;
 mod info;
 mod probe;
 mod legend;
@@ -62,7 +63,7 @@ enum Command {
     Probe(probe::ProbeArgs),
     /// Compare two images (.png, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
     Compare(compare::CompareArgs),
-    /// Render a suite of scenes and compare each with its golden image.
+    /// Render a suite of scenes and compare each with its golden image, or grade students' images.
     Test(test::TestArgs),
     /// Assemble the parts of an image rendered with --region or --shard.
     Stitch(stitch::StitchArgs),
