@@ -18,6 +18,7 @@ mod first_image;
 mod image;
 mod inspector;
 mod jobs;
+mod observer;
 mod panel;
 mod selection;
 mod settings;
