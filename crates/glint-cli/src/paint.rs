@@ -20,6 +20,12 @@ pub fn paint_overlay(image: &mut RgbImage, overlay: &Overlay, observer: &Observe
             line(image, a, b, width + 2.0, [0, 0, 0], 0.6, segment.ink.is_dashed());
         }
         line(image, a, b, width, segment.ink.rgb(), 1.0, segment.ink.is_dashed());
+        if segment.ink == Ink::ShadowBlocked {
+            // A cross where the blocker stops it.
+            for d in [DVec2::new(5.0, 5.0), DVec2::new(5.0, -5.0)] {
+                line(image, b - d, b + d, width + 1.0, segment.ink.rgb(), 1.0, false);
+            }
+        }
     }
     for dot in &overlay.dots {
         let Some(at) = observer.project(dot.at) else { continue };

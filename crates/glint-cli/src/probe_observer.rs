@@ -19,7 +19,7 @@ use crate::{exit, Failure};
 pub struct ObserverArgs {
     /// Draw the camera frame, the view window and the ray tree as seen by an
     /// observer at EYE looking at LOOK_AT (each x,y,z) into the PNG named by -o
-    #[arg(long, num_args = 2, value_names = ["EYE", "LOOK_AT"], value_parser = parse_point, requires = "output")]
+    #[arg(long, num_args = 2, value_names = ["EYE", "LOOK_AT"], value_parser = parse_point, requires = "output", allow_hyphen_values = true)]
     observer: Option<Vec<Vec3>>,
     /// The observer's vertical field of view, in degrees
     #[arg(long, default_value_t = 45.0, requires = "observer")]

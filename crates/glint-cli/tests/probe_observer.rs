@@ -28,7 +28,7 @@ fn the_observers_picture_shows_the_eye_where_the_observer_looks_and_the_printed_
     let out = dir.path().join("tree.png");
     let scene = tutorial();
     // The observer looks straight at the tutorial camera's eye (0, 1, 4).
-    let args = ["probe", &scene, "178", "96", "--json", "--observer", "3,2.5,6", "0,1,4", "--observer-width", "200", "--observer-height", "150"];
+    let args = ["probe", &scene, "178", "96", "--json", "--observer", "-3,2.5,6", "0,1,4", "--observer-width", "200", "--observer-height", "150"];
     let o = glint(&[&args[..], &["-o", out.to_str().unwrap()]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
     let picture = image::open(&out).unwrap().to_rgb8();
