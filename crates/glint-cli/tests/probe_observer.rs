@@ -34,7 +34,7 @@ fn the_observers_picture_shows_the_eye_where_the_observer_looks_and_the_printed_
     let picture = image::open(&out).unwrap().to_rgb8();
     assert_eq!(picture.dimensions(), (200, 150));
     assert_eq!(picture.get_pixel(100, 75).0, [255, 255, 255], "the eye's white dot at the picture's centre");
-    assert_eq!(files_in(dir.path()), [out.clone()], "no temporary file is left");
+    assert_eq!(files_in(dir.path()), [out], "no temporary file is left");
 
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let camera = &report["camera"];
