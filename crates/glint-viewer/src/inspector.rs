@@ -1,7 +1,9 @@
 //! Inspect mode: a clicked pixel's ray tree, traced by the probe kernel (the
 //! trace kernel's own code, recording every ray), drawn over the image as 3D
 //! segments seen by the current camera and listed in the side panel. The pixel
-//! stays pinned and is probed again whenever the scene in the canvas changes.
+//! stays pinned and is probed again whenever the scene in the canvas changes,
+//! except in observer mode (`observer.rs`), which freezes the trees of the
+//! pixel (or its row or column) and the camera that traced them.
 //!
 //! The probe kernel is as large as the trace kernel, so it is compiled in the
 //! background the first time inspect mode is used, not at start-up.
