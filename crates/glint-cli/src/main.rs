@@ -7,7 +7,9 @@ mod compare;
 mod frames;
 mod grade;
 mod info;
+mod paint;
 mod probe;
+mod probe_observer;
 mod legend;
 mod render;
 mod scene_arg;
@@ -59,7 +61,8 @@ enum Command {
     View(view::ViewArgs),
     /// Write one of the Standard Procedural Databases as an NFF file.
     Spd(spd::SpdArgs),
-    /// Follow one pixel's rays: the camera frame and the whole ray tree with every term it adds.
+    /// Follow one pixel's rays: the camera frame and the whole ray tree with every term it adds
+    /// (with --observer, also drawn in 3-D as seen from outside, into a PNG).
     Probe(probe::ProbeArgs),
     /// Compare two images (.png, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
     Compare(compare::CompareArgs),

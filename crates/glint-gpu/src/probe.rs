@@ -181,7 +181,7 @@ impl TreeText<'_> {
     /// The scene's index of the light a shadow ray went to: the kernels see
     /// only the lights that are on, in scene order.
     pub fn scene_light(&self, ray: &ProbeRay) -> Option<usize> {
-        self.scene.lights.iter().enumerate().filter(|(_, l)| l.enabled).nth(ray.light as usize).map(|(i, _)| i)
+        glint_scene::observer::shadow_ray_light(self.scene, ray)
     }
 
     /// "object N (shape, material "name")".
