@@ -44,7 +44,8 @@ pub fn run(args: &CheckArgs) -> Result<(), Failure> {
             .map_err(|e| e.to_string())
             .and_then(|scene| scene.validate().map(|()| scene).map_err(|e| format!("{}: {e}", path.display())));
         match checked {
-            Ok(scene) => {
+            Ok(mut scene) => {
+                scene.warnings.extend(material_notes(path));
                 for warning in &scene.warnings {
                     eprintln!("glint: warning: {warning}");
                 }
@@ -65,6 +66,16 @@ pub fn run(args: &CheckArgs) -> Result<(), Failure> {
         0 => Ok(()),
         // Each error is printed already.
         _ => Err(Failure::explained(exit::INPUT)),
+    }
+}
+
+/// What a TOML scene's materials suggest was forgotten (see
+/// [`glint_scene::toml_scene::material_notes`]); warnings only `glint check` gives.
+fn material_notes(path: &std::path::Path) -> Vec<glint_scene::LoadError> {
+    let is_toml = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    match std::fs::read_to_string(path) {
+        Ok(source) if is_toml => glint_scene::toml_scene::material_notes(&source, path),
+        _ => Vec::new(),
     }
 }
 
@@ -186,6 +197,10 @@ pub fn summary(name: &str, scene: &Scene) -> String {
         render.push_str(&format!("; depth cue from {} to {}", num(f64::from(cue.near)), num(f64::from(cue.far))));
     }
     line("render", render);
+    let transmitters = scene.objects.iter().any(|o| scene.materials.get(o.material).is_some_and(|m| m.is_transmissive()));
+    if transmitters && r.shadows && r.shadow_mode == glint_scene::ShadowMode::Opaque {
+        line("", "glass casts black shadows and blocks light from inside; shadow_mode = \"tinted\" in [render] lets light through".into());
+    }
     if let Some(a) = &scene.animation {
         use glint_scene::animation::{CameraTrack, Interpolation};
         let mut moves = vec![match &a.camera {

@@ -5,9 +5,12 @@ mod bench_cold;
 mod check;
 mod compare;
 mod frames;
+mod grade;
 mod info;
 mod kernels;
+mod paint;
 mod probe;
+mod probe_observer;
 mod legend;
 mod render;
 mod scene_arg;
@@ -61,11 +64,12 @@ enum Command {
     View(view::ViewArgs),
     /// Write one of the Standard Procedural Databases as an NFF file.
     Spd(spd::SpdArgs),
-    /// Follow one pixel's rays: the camera frame and the whole ray tree with every term it adds.
+    /// Follow one pixel's rays: the camera frame and the whole ray tree with every term it adds
+    /// (with --observer, also drawn in 3-D as seen from outside, into a PNG).
     Probe(probe::ProbeArgs),
     /// Compare two images (.png, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
     Compare(compare::CompareArgs),
-    /// Render a suite of scenes and compare each with its golden image.
+    /// Render a suite of scenes and compare each with its golden image, or grade students' images.
     Test(test::TestArgs),
     /// Assemble the parts of an image rendered with --region or --shard.
     Stitch(stitch::StitchArgs),

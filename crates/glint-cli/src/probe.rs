@@ -9,10 +9,12 @@ use glint_gpu::probe::{kind_name, number_text as num, vec3_text as v3, Prober, R
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
 use glint_scene::gpu_types::{MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_SHADOW};
+use glint_scene::camera_frame::CameraFrame;
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::{Projection, Scene};
 use serde_json::json;
 
+use crate::probe_observer::ObserverArgs;
 use crate::{exit, Failure};
 
 #[derive(Args)]
@@ -45,6 +47,8 @@ pub struct ProbeArgs {
     /// One JSON object on standard output
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    observer: ObserverArgs,
 }
 
 pub fn run(args: &ProbeArgs) -> Result<(), Failure> {
@@ -64,13 +68,18 @@ pub fn run(args: &ProbeArgs) -> Result<(), Failure> {
             format!("pixel ({}, {}) is outside the {width} x {height} image: X is 0 to {}, Y is 0 to {}", args.x, args.y, width - 1, height - 1),
         ));
     }
+    let frame = CameraFrame::new(&scene.camera, width, height).expect("a loaded scene's camera has a basis");
+    let picture = args.observer.picture(&scene)?;
     let gpu = Gpu::new()?;
     let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
     let prober = Prober::new(&renderer, &ShaderSource::Embedded)?;
     let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
     let options = RenderOptions { spp: args.spp, seed: args.seed, ..RenderOptions::default() };
     let tree = prober.probe(&renderer, &prepared.buffers, args.x, args.y, &options)?;
-    let report = Report { scene: &scene, width, height, x: args.x, y: args.y, tree: &tree };
+    if let Some(picture) = &picture {
+        picture.draw(&renderer, &scene, &frame, (args.x, args.y), &tree.rays)?;
+    }
+    let report = Report { scene: &scene, frame, width, height, x: args.x, y: args.y, tree: &tree };
     if args.json {
         println!("{}", report.json());
     } else {
@@ -81,6 +90,8 @@ pub fn run(args: &ProbeArgs) -> Result<(), Failure> {
 
 struct Report<'a> {
     scene: &'a Scene,
+    /// The camera frame printed, and drawn in the observer's picture.
+    frame: CameraFrame,
     width: u32,
     height: u32,
     x: u32,
@@ -95,33 +106,32 @@ impl Report<'_> {
 
     /// e, u, v, w, the view window and the screen point of the eye ray.
     fn camera_lines(&self) -> Vec<String> {
-        let camera = &self.scene.camera;
-        let basis = camera.basis().expect("a loaded scene's camera has a basis");
-        let (r, t) = camera.half_extents(self.width, self.height);
+        let frame = &self.frame;
         let f = |v: glam::DVec3| v3(v.as_vec3().into());
         let mut lines = vec![
-            format!("e = {}   (the eye)", v3(camera.eye.into())),
-            format!("u = {}   (right)", f(basis.u)),
-            format!("v = {}   (up)", f(basis.v)),
-            format!("w = {}   (backwards: from look_at towards the eye)", f(basis.w)),
+            format!("e = {}   (the eye)", f(frame.e)),
+            format!("u = {}   (right)", f(frame.u)),
+            format!("v = {}   (up)", f(frame.v)),
+            format!("w = {}   (backwards: from look_at towards the eye)", f(frame.w)),
         ];
+        let window = format!("l = {}, r = {}, b = {}, t = {}", num(frame.l as f32), num(frame.r as f32), num(frame.b as f32), num(frame.t as f32));
         let eye_ray = &self.tree.rays[0];
         let d = glam::Vec3::from(eye_ray.dir).as_dvec3();
-        match camera.projection {
+        match frame.projection {
             Projection::Perspective { fov_y_degrees } => {
                 lines.push(format!(
-                    "view window at distance d = 1: l = {}, r = {}, b = {}, t = {} (vertical field of view {}°)",
-                    num(-r as f32), num(r as f32), num(-t as f32), num(t as f32), num(fov_y_degrees)
+                    "view window at distance d = {}: {window} (vertical field of view {}°)",
+                    num(frame.d as f32), num(fov_y_degrees)
                 ));
-                let depth = -d.dot(basis.w);
-                let (us, vs) = (d.dot(basis.u) / depth, d.dot(basis.v) / depth);
+                let depth = -d.dot(frame.w) / frame.d;
+                let (us, vs) = (d.dot(frame.u) / depth, d.dot(frame.v) / depth);
                 lines.push(format!("screen point s = (u_s, v_s) = ({}, {})", num(us as f32), num(vs as f32)));
                 lines.push(format!("ray direction = normalize(-w + u_s·u + v_s·v) = {}", v3(eye_ray.dir)));
             }
             Projection::Orthographic { height } => {
-                lines.push(format!("orthographic, view window {} high: l = {}, r = {}, b = {}, t = {}", num(height), num(-r as f32), num(r as f32), num(-t as f32), num(t as f32)));
-                let o = glam::Vec3::from(eye_ray.origin).as_dvec3() - camera.eye.as_dvec3();
-                lines.push(format!("screen point s = (u_s, v_s) = ({}, {})", num(o.dot(basis.u) as f32), num(o.dot(basis.v) as f32)));
+                lines.push(format!("orthographic, view window {} high: {window}", num(height)));
+                let o = glam::Vec3::from(eye_ray.origin).as_dvec3() - frame.e;
+                lines.push(format!("screen point s = (u_s, v_s) = ({}, {})", num(o.dot(frame.u) as f32), num(o.dot(frame.v) as f32)));
                 lines.push(format!("ray origin = e + u_s·u + v_s·v = {}, direction = -w", v3(eye_ray.origin)));
             }
         }
@@ -145,8 +155,7 @@ impl Report<'_> {
     }
 
     fn json(&self) -> serde_json::Value {
-        let camera = &self.scene.camera;
-        let basis = camera.basis().expect("a loaded scene's camera has a basis");
+        let frame = &self.frame;
         let d3 = |v: glam::DVec3| [v.x, v.y, v.z];
         let rays: Vec<_> = self
             .tree
@@ -187,7 +196,10 @@ impl Report<'_> {
             "pixel": [self.x, self.y],
             "image": [self.width, self.height],
             "color": self.tree.color,
-            "camera": { "e": camera.eye.to_array(), "u": d3(basis.u), "v": d3(basis.v), "w": d3(basis.w) },
+            "camera": {
+                "e": frame.e.as_vec3().to_array(), "u": d3(frame.u), "v": d3(frame.v), "w": d3(frame.w),
+                "l": frame.l, "r": frame.r, "b": frame.b, "t": frame.t, "d": frame.d,
+            },
             "rays": rays,
             "truncated": self.tree.truncated,
         })

@@ -409,7 +409,7 @@ fn render_frame(
         BitsArg::Sixteen => PngBits::Sixteen,
     };
     let (width, height) = (prepared.buffers.width(), prepared.buffers.height());
-    let part = (region != Region::whole(width, height)).then_some(Placement { width, height, region });
+    let part = (region != Region::whole(width, height)).then_some(Placement { width, height, region, shard: args.shard });
     let output = paths(&args.output);
     let (main, stats, summary) = render_to_file(renderer, &prepared.buffers, region, options, &output, bits, progress)?;
     let mut staged = vec![(main, output)];

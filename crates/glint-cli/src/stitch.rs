@@ -15,12 +15,19 @@ pub struct StitchArgs {
     /// The whole image, in the parts' format
     #[arg(short, long)]
     output: PathBuf,
+    /// No line saying what was written
+    #[arg(short, long)]
+    quiet: bool,
 }
 
 pub fn run(args: &StitchArgs) -> Result<(), Failure> {
     crate::render::check_output(&args.output)?;
-    glint_gpu::stitch::stitch(&args.parts, &args.output).map_err(|e| match e {
+    let (width, height) = glint_gpu::stitch::stitch(&args.parts, &args.output).map_err(|e| match e {
         glint_gpu::GpuError::Stitch(m) => Failure::new(exit::INPUT, m),
         other => Failure::from(other),
-    })
+    })?;
+    if !args.quiet {
+        eprintln!("glint: stitched {width}x{height} from {} parts -> {}", args.parts.len(), args.output.display());
+    }
+    Ok(())
 }

@@ -1,6 +1,7 @@
 //! `glint test [MANIFEST.toml | DIR]`: render every case of a suite, compare
 //! each with its golden image, print one line per case and close with
-//! `N passed, N failed`.
+//! `N passed, N failed`. With `--submissions DIR` (or one `--submission`), it
+//! grades students' own images instead: see grade.rs.
 
 use std::path::PathBuf;
 
@@ -28,19 +29,36 @@ pub struct TestArgs {
     #[arg(long, value_name = "FILE.xml")]
     junit: Option<PathBuf>,
     /// Also write an HTML report, with reference, render and diff of each
-    /// failing case, as DIR/index.html
+    /// failing case, as DIR/index.html; when grading, the class summary, and
+    /// each student's report and results.json in DIR/STUDENT/
     #[arg(long, value_name = "DIR")]
     report: Option<PathBuf>,
+    /// Grade the images in this directory, one folder per student, by the
+    /// manifest's cases that name an `image`
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["submission", "bless"])]
+    submissions: Option<PathBuf>,
+    /// Grade one student's folder of images (Gradescope's /autograder/submission)
+    #[arg(long, value_name = "DIR", conflicts_with = "bless")]
+    submission: Option<PathBuf>,
+    /// Write the --submission's Gradescope results, e.g. /autograder/results/results.json
+    #[arg(long, value_name = "FILE.json", requires = "submission")]
+    gradescope: Option<PathBuf>,
 }
 
 pub fn run(args: &TestArgs) -> Result<(), Failure> {
     let suite = Suite::load(&args.suite).map_err(|e| Failure::new(exit::INPUT, e))?;
-    let cases = suite.select(&args.cases).map_err(|e| Failure::new(exit::USAGE, e))?;
-    let gpu = Gpu::new()?;
-    if let Some(warning) = gpu.driver_warning() {
-        eprintln!("glint: {warning}");
+    if let Some(grading) = crate::grade::Grading::of(args.submissions.as_deref(), args.submission.as_deref()) {
+        let outputs = crate::grade::Outputs { report: args.report.as_deref(), junit: args.junit.as_deref(), gradescope: args.gradescope.as_deref() };
+        return crate::grade::run(&suite, &args.cases, grading, outputs);
     }
-    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+    if suite.cases.is_empty() {
+        return Err(Failure::new(
+            exit::USAGE,
+            format!("{}: its cases grade submitted images: give --submissions DIR (a folder per student) or --submission DIR", suite.source.display()),
+        ));
+    }
+    let cases = suite.select(&args.cases).map_err(|e| Failure::new(exit::USAGE, e))?;
+    let renderer = renderer()?;
     let bless = match (args.bless, args.cases.is_empty()) {
         (false, _) => Bless::No,
         (true, true) => Bless::MissingOrFailing,
@@ -60,4 +78,13 @@ pub fn run(args: &TestArgs) -> Result<(), Failure> {
     let summary = Summary::of(&outcomes);
     println!("{summary}");
     if summary.failed == 0 { Ok(()) } else { Err(Failure::explained(exit::DIFFERENT)) }
+}
+
+/// A renderer on the GPU (a software adapter without one), after any driver warning.
+pub fn renderer() -> Result<Renderer, Failure> {
+    let gpu = Gpu::new()?;
+    if let Some(warning) = gpu.driver_warning() {
+        eprintln!("glint: {warning}");
+    }
+    Ok(Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?)
 }

@@ -4,64 +4,14 @@
 //! with JUnit XML and an HTML report that headless Chromium loads with its
 //! images.
 
+mod suite;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use quick_xml::events::Event;
-
-fn glint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_glint")).args(args).output().expect("glint runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn arg(path: &Path) -> &str {
-    path.to_str().unwrap()
-}
-
-/// A small scene: a red sphere on a grey floor under one light.
-const SPHERE: &str = r#"
-[image]
-width = 48
-height = 36
-background = [0.1, 0.2, 0.4]
-
-[camera]
-eye = [0, 1.5, 5]
-look_at = [0, 0.5, 0]
-fov = 45
-
-[[light]]
-type = "point"
-position = [3, 5, 4]
-
-[material.red]
-color = [0.9, 0.15, 0.1]
-kd = 0.8
-ks = 0.3
-
-[material.grey]
-color = [0.6, 0.6, 0.6]
-kd = 0.9
-
-[[object]]
-type = "sphere"
-center = [0, 0.8, 0]
-radius = 0.8
-material = "red"
-
-[[object]]
-type = "polygon"
-vertices = [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]
-material = "grey"
-"#;
+use suite::{arg, chromium, glint, stderr, stdout, SPHERE};
 
 /// The same picture as NFF: 40 × 30.
 const NFF: &str = "v\nfrom 0 1.5 5\nat 0 0.5 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 40 30\n\
@@ -227,27 +177,6 @@ fn check_junit(xml: &str, folder: &Path) {
     assert_eq!(failures, ["sphere"]);
 }
 
-/// Chromium as the environment runs it: headless, no sandbox, no GPU, no
-/// network services, a fresh profile.
-fn chromium(args: &[&str]) -> Output {
-    let profile = tempfile::tempdir().unwrap();
-    let user_data = format!("--user-data-dir={}", profile.path().display());
-    Command::new("chromium")
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--no-first-run",
-            &user_data,
-        ])
-        .args(args)
-        .output()
-        .expect("chromium runs (bash .ci/setup installs it)")
-}
-
 fn check_report_in_chromium(report: &Path) {
     let index = report.join("index.html");
     let url = format!("file://{}", index.display());
@@ -256,11 +185,16 @@ fn check_report_in_chromium(report: &Path) {
     let dom = stdout(&o);
     assert!(dom.contains("<h1>glint test: "), "{dom}");
     let sources: Vec<&str> = dom.split("<img src=\"").skip(1).map(|rest| rest.split('"').next().unwrap()).collect();
-    assert_eq!(sources, ["sphere-reference.png", "sphere-render.png", "sphere-diff.png"], "{dom}");
+    let expected = ["sphere-reference.png", "sphere-render.png", "sphere-diff.png", "sphere-reference-zoom.png", "sphere-render-zoom.png"];
+    assert_eq!(sources, expected, "{dom}");
     for source in &sources {
         let image = image::open(report.join(source)).unwrap_or_else(|e| panic!("{source}: {e}"));
         assert!(image.width() >= 48, "{source}");
     }
+    // The case's settings, and where it differs: the white block painted at (20, 10).
+    assert!(dom.contains("<p>settings: view shaded, max depth 5, 1 spp, 48x36</p>"), "{dom}");
+    let zoom = image::open(report.join("sphere-reference-zoom.png")).unwrap().to_rgb8();
+    assert!(zoom.pixels().any(|p| p.0 == [255, 255, 255]), "the magnified golden shows the white block");
 
     // A screenshot shows the images drawn: the sphere's red and the sky's blue
     // are colours the page's own text and borders never use.

@@ -143,7 +143,7 @@ fn likely_mistakes_warn_with_file_and_line_and_the_render_goes_on() {
         stderr(&o),
         format!(
             "glint: warning: {shown}:8:7: fov: 0.5° is a very narrow view; angles are in degrees (0.5 radians is 28.6)\n\
-glint: warning: {shown}:15:9: color: [230, 50, 25] looks like 0–255 values, but colours are 0 to 1; did you mean [0.9, 0.2, 0.1]?\n"
+glint: warning: {shown}:15:9: color: [230, 50, 25] looks like 0–255 values, but colours are 0 to 1, so what this material colours renders white; did you mean [0.9, 0.2, 0.1]?\n"
         )
     );
     assert!(out.is_file());
@@ -379,4 +379,62 @@ fn the_readme_first_scene_is_the_file_and_its_summary_is_what_check_prints() {
     let o = glint_in(Some(&root), &[], &["check", "scenes/first.toml"]);
     assert!(o.status.success() && o.stderr.is_empty(), "{}", stderr(&o));
     assert_eq!(readme_block("### Checking scenes"), stdout(&o), "README.md's example summary is current");
+}
+
+#[test]
+fn check_names_objects_without_material_unused_materials_and_tinted_shadows() {
+    let dir = tempfile::tempdir().unwrap();
+    let extra = "[material.glass]\ncolor = 0.1\ntransmit = 0.9\nior = 1.5\n[material.blue]\ncolor = [0.1, 0.1, 0.9]\n\n\
+[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"glass\"\n\n\
+[[object]]\ntype = \"sphere\"\ncenter = [2, 0, 0]\nradius = 0.5\n";
+    let path = scene(dir.path(), "student.toml", "40", extra);
+    let o = glint(&["check", path.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let shown = path.display();
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "glint: warning: {shown}:18:1: material.blue: defined but never used: no object has `material = \"blue\"`\n\
+glint: warning: {shown}:27:1: object: this sphere has no `material`, so it gets the default, a matte light grey\n"
+        )
+    );
+    let tinted = "             glass casts black shadows and blocks light from inside; shadow_mode = \"tinted\" in [render] lets light through\n";
+    assert!(stdout(&o).contains(&format!("shadows opaque, reflections on, refractions on\n{tinted}")), "{}", stdout(&o));
+    std::fs::write(&path, std::fs::read_to_string(&path).unwrap() + "\n[render]\nshadow_mode = \"tinted\"\n").unwrap();
+    let o = glint(&["check", path.to_str().unwrap()]);
+    assert!(o.status.success() && !stdout(&o).contains("glass casts"), "{}", stdout(&o));
+}
+
+#[test]
+fn probe_says_along_for_shadow_rays_and_why_glass_blocks_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let glass = "[material.glass]\ncolor = [0.1, 0.1, 0.1]\ntransmit = 0.9\nior = 1.5\n\n\
+[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"glass\"\n";
+    let path = scene(dir.path(), "glass.toml", "20", glass);
+    let o = glint(&["probe", path.to_str().unwrap(), "16", "12"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let shadows: Vec<&str> = out.lines().filter(|l| l.contains("shadow ray to light")).collect();
+    assert!(shadows.len() >= 2, "{out}");
+    assert!(shadows.iter().all(|l| l.contains(", from (") && l.contains(") along (")), "{out}");
+    let explained = "the glass it leaves blocks it: shadows are opaque; with shadow_mode = \"tinted\" in [render], light passes through glass, tinted by its transmit";
+    let blocked = out.lines().position(|l| l.contains(explained)).unwrap_or_else(|| panic!("no explanation in:\n{out}"));
+    assert!(out.lines().nth(blocked - 2).unwrap().contains("blocked by object 0 (sphere, material \"glass\")"), "{out}");
+    assert_eq!(out.matches(explained).count(), out.matches("blocked by object 0").count(), "{out}");
+
+    std::fs::write(&path, std::fs::read_to_string(&path).unwrap() + "\n[render]\nshadow_mode = \"tinted\"\n").unwrap();
+    let o = glint(&["probe", path.to_str().unwrap(), "16", "12"]);
+    assert!(o.status.success() && !stdout(&o).contains("the glass it leaves"), "{}", stdout(&o));
+}
+
+#[test]
+fn the_tutorials_probe_printout_is_what_probe_prints() {
+    let tutorial = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/tutorial.md")).unwrap();
+    let start = tutorial.find("```\npixel (178, 96)").expect("the printout's block") + 4;
+    // The closing fence is on a line of its own.
+    let end = start + tutorial[start..].find("\n```\n").expect("a closing fence on its own line") + 1;
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/tutorial.toml");
+    let o = glint(&["probe", scene.to_str().unwrap(), "178", "96"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(&tutorial[start..end], stdout(&o));
 }

@@ -32,10 +32,27 @@ fn render(out: &Path, extra: &[&str]) {
 }
 
 fn stitch(parts: &[PathBuf], out: &Path) -> Output {
+    stitch_with(parts, out, &[])
+}
+
+fn stitch_with(parts: &[PathBuf], out: &Path, extra: &[&str]) -> Output {
     let mut args = vec!["stitch".to_string()];
     args.extend(parts.iter().map(|p| path(p).to_string()));
     args.extend(["-o".to_string(), path(out).to_string()]);
+    args.extend(extra.iter().map(|a| a.to_string()));
     Command::new(env!("CARGO_BIN_EXE_glint")).args(&args).output().expect("glint runs")
+}
+
+/// Shards `indices` of `count` of the 61 × 37 showcase, rendered into `dir`.
+fn shards(dir: &Path, indices: &[u32], count: u32) -> Vec<PathBuf> {
+    indices
+        .iter()
+        .map(|i| {
+            let part = dir.join(format!("shard{i}of{count}.png"));
+            render(&part, &["--shard", &format!("{i}/{count}")]);
+            part
+        })
+        .collect()
 }
 
 #[track_caller]
@@ -190,8 +207,10 @@ fn parts_that_do_not_make_one_image_are_one_line_errors() {
     std::fs::copy(&top, &garbled).unwrap();
     std::fs::write(dir.path().join("garbled.png.json"), "{\"image\": [61], \"region\": [0, 0, 61, 18]}").unwrap();
 
-    let cases: [(&[&PathBuf], &str, &str); 9] = [
-        (&[&top], "out.png", "uncovered, the first at (0, 18)"),
+    // An unmatched shell glob reaches glint as it is.
+    let unmatched = dir.path().join("shard_*.png");
+    let cases: [(&[&PathBuf], &str, &str); 10] = [
+        (&[&top], "out.png", "uncovered, the first at (0, 18): shard 1 of 2 is missing"),
         (&[&top, &bottom, &overlapping], "out.png", "overlap"),
         (&[&top, &wider], "out.png", "is a part of a 62x37 image, but"),
         (&[&top, &bottom16], "out.png", "is a 16-bit PNG, but"),
@@ -200,6 +219,7 @@ fn parts_that_do_not_make_one_image_are_one_line_errors() {
         (&[&top, &whole], "out.png", "whole.png: no placement file"),
         (&[&resized, &bottom], "out.png", "is 61x18, but its placement"),
         (&[&garbled, &bottom], "out.png", "`image` must be a list of 2 whole numbers"),
+        (&[&unmatched], "out.png", "shard_*.png: no such file"),
     ];
     for (parts, out, want) in cases {
         let out = dir.path().join(out);
@@ -209,6 +229,59 @@ fn parts_that_do_not_make_one_image_are_one_line_errors() {
         assert!(err.starts_with("glint: ") && err.contains(want) && err.lines().count() == 1, "want `{want}`, got: {err}");
         assert!(!out.exists(), "{want}: an output was written");
     }
+}
+
+#[test]
+fn stitch_says_what_it_wrote_unless_quiet() {
+    let dir = tempfile::tempdir().unwrap();
+    let parts = shards(dir.path(), &[0, 1, 2], 3);
+    let out = dir.path().join("full.png");
+    let o = stitch(&parts, &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stderr(&o), format!("glint: stitched 61x37 from 3 parts -> {}\n", path(&out)));
+    let quiet = dir.path().join("quiet.png");
+    let o = stitch_with(&parts, &quiet, &["-q"]);
+    assert!(o.status.success() && o.stderr.is_empty(), "{}", stderr(&o));
+    assert_same_file(&out, &quiet);
+}
+
+/// A shard records its I/N beside it, so that a stitch short of shards names
+/// them and the Slurm `--array` that renders just them; parts written before
+/// Glint recorded it still stitch.
+#[test]
+fn missing_shards_are_named_and_parts_without_a_shard_still_stitch() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("full.png");
+    let parts = shards(dir.path(), &[0, 4], 5);
+    let placement = std::fs::read_to_string(dir.path().join("shard4of5.png.json")).unwrap();
+    assert_eq!(placement, "{\"glint_part\": 1, \"image\": [61, 37], \"region\": [0, 29, 61, 37], \"shard\": [4, 5]}\n");
+    let o = stitch(&parts, &out);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "glint: the parts leave 1342 pixels of the 61x37 image uncovered, the first at (0, 7): \
+         shards 1-3 of 5 are missing: render them again (in a Slurm job array, --array=1-3)\n"
+    );
+    assert!(!out.exists());
+
+    // Shards 0 and 1 of 2 as an older Glint wrote them: no `shard`.
+    let old = shards(dir.path(), &[0, 1], 2);
+    for (part, region) in old.iter().zip(["[0, 0, 61, 18]", "[0, 18, 61, 37]"]) {
+        let text = format!("{{\"glint_part\": 1, \"image\": [61, 37], \"region\": {region}}}\n");
+        std::fs::write(dir.path().join(format!("{}.json", part.file_name().unwrap().to_str().unwrap())), text).unwrap();
+    }
+    let o = stitch(&old[..1], &out);
+    assert!(stderr(&o).ends_with("the first at (0, 18): a part is missing\n"), "{}", stderr(&o));
+    let o = stitch(&old, &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let whole = dir.path().join("whole.png");
+    render(&whole, &[]);
+    assert_same_file(&whole, &out);
+
+    // A shard's `I/N` must be the region it holds.
+    std::fs::write(dir.path().join("shard0of2.png.json"), "{\"image\": [61, 37], \"region\": [0, 0, 61, 18], \"shard\": [1, 2]}").unwrap();
+    let o = stitch(&old, &out);
+    assert!(stderr(&o).contains("shard0of2.png.json: the region 0 0 61 18 is not shard 1/2 of the 61x37 image"), "{}", stderr(&o));
 }
 
 #[test]

@@ -1,5 +1,7 @@
-//! Rendering a case: its scene with its render settings, as `glint render`
+//! Rendering a case's scene with its render settings, as `glint render`
 //! would with the same options.
+
+use std::path::Path;
 
 use glint_gpu::{Acceleration, Image, RenderOptions, Renderer, ToneMap};
 use glint_scene::gpu_types::{Filter, View};
@@ -7,20 +9,27 @@ use glint_scene::MAX_IMAGE_SIDE;
 use glint_scene::nff::NffAngle;
 use glint_scene::LoadOptions;
 
-use crate::manifest::Case;
 use crate::settings::{FilterName, NffAngleName, RenderSettings, ToneMapName, ViewName};
 
-/// Renders `case`; the error is one line naming the scene file or the GPU problem.
-pub fn render(renderer: &Renderer, case: &Case) -> Result<Image, String> {
-    let settings = &case.render;
+/// A case's render and the settings it was made with, in words.
+pub struct Rendered {
+    pub image: Image,
+    /// `view shaded, max depth 5, 4 spp, 320x240`: what a report shows, so
+    /// that a reader sees which settings made an image differ.
+    pub settings: String,
+}
+
+/// Renders `scene` with `settings`; the error is one line naming the scene
+/// file or the GPU problem.
+pub fn render(renderer: &Renderer, scene_file: &Path, settings: &RenderSettings) -> Result<Rendered, String> {
     let load_options = LoadOptions {
         nff_angle: match settings.nff_angle {
             Some(NffAngleName::Edges) => NffAngle::Edges,
             Some(NffAngleName::Centers) | None => NffAngle::Centers,
         },
     };
-    let mut scene = glint_scene::load_with(&case.scene, &load_options).map_err(|e| e.to_string())?;
-    let (width, height) = image_size(settings, scene.width, scene.height).map_err(|e| format!("{}: {e}", case.scene.display()))?;
+    let mut scene = glint_scene::load_with(scene_file, &load_options).map_err(|e| e.to_string())?;
+    let (width, height) = image_size(settings, scene.width, scene.height).map_err(|e| format!("{}: {e}", scene_file.display()))?;
     if let Some(depth) = settings.max_depth {
         scene.render.max_depth = depth.0;
     }
@@ -50,11 +59,15 @@ pub fn render(renderer: &Renderer, case: &Case) -> Result<Image, String> {
     let (image, _) = renderer.render(&prepared.buffers, &options, &mut |_, _| {}).map_err(|e| e.to_string())?;
     // A depth image stores misses as +∞, as `glint render` writes it.
     let image = if view == View::Depth { image.with_misses_at_infinity() } else { image };
-    Ok(if matches!(view, View::Depth | View::Id | View::Heatmap) { one_number_per_pixel(image) } else { image })
+    let image = if view.is_data() && view != View::Normal { one_number_per_pixel(image) } else { image };
+    let view_name = settings.view.map_or("shaded", ViewName::name);
+    let settings = format!("view {view_name}, max depth {}, {} spp, {width}x{height}", scene.render.max_depth, options.spp);
+    Ok(Rendered { image, settings })
 }
 
-/// The depth, id and heatmap views are one number per pixel, the first
-/// linear channel, and `glint render` writes them as one channel; with that
+/// The data views but normals (depth, id, heatmap, ray depth and count) are
+/// one number per pixel, the first linear channel, and `glint render` writes
+/// them as one channel; with that
 /// number in all three channels the render compares with such a file, and a
 /// golden blessed from it holds the same.
 fn one_number_per_pixel(mut image: Image) -> Image {
@@ -99,6 +112,8 @@ fn view_of(view: Option<ViewName>) -> View {
         Some(ViewName::Diffuse) => View::Diffuse,
         Some(ViewName::Id) => View::Id,
         Some(ViewName::Heatmap) => View::Heatmap,
+        Some(ViewName::RayDepth) => View::RayDepth,
+        Some(ViewName::RayCount) => View::RayCount,
     }
 }
 

@@ -1,19 +1,21 @@
-//! The HTML report: a table of every case, then for each failing case its
-//! reference, render and error map side by side. The page and its PNG images
+//! The HTML report: a table of every case with its settings, then for each
+//! failing case its reference, tested image and error map side by side, and
+//! the worst region of the first two magnified. The page and its PNG images
 //! go in one directory, linked by relative names, so the directory can be
 //! kept as a CI artifact and opened anywhere.
 
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
+use crate::comparison::Png;
 use crate::markup::escape;
-use crate::runner::{Outcome, Png, Status, Summary};
+use crate::runner::{Outcome, Points, Status, Summary};
 
-const STYLE: &str = "body { font-family: sans-serif; margin: 1.5em; color: #222; background: #fafafa }
+pub const STYLE: &str = "body { font-family: sans-serif; margin: 1.5em; color: #222; background: #fafafa }
 table { border-collapse: collapse; margin-bottom: 2em }
 th, td { text-align: left; padding: 0.25em 0.8em; border-bottom: 1px solid #ddd; vertical-align: top }
 .failed { color: #a00 }
-.images { display: flex; flex-wrap: wrap; gap: 1.5em; align-items: flex-start }
+.images { display: flex; flex-wrap: wrap; gap: 1.5em; align-items: flex-start; margin-bottom: 1em }
 figure { margin: 0 }
 img { image-rendering: pixelated; border: 1px solid #bbb; background: #fff }
 code { font-size: 0.9em }";
@@ -26,46 +28,56 @@ const SHOWN_WIDTH: u32 = 320;
 /// returns the page's path. The error names the file that failed.
 pub fn write_report(dir: &Path, title: &str, outcomes: &[Outcome]) -> Result<PathBuf, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create the report directory: {e}", dir.display()))?;
-    let write = |name: &str, bytes: &[u8]| {
-        let path = dir.join(name);
-        glint_gpu::write_atomically(&path, bytes).map_err(|e| format!("{}: cannot write: {e}", path.display()))
-    };
     for outcome in outcomes {
-        for (role, png) in report_images(outcome) {
-            write(&image_name(outcome, role), &png.bytes)?;
+        let (whole, zoomed) = report_images(outcome);
+        for (name, _, png) in whole.iter().chain(&zoomed) {
+            write_file(&dir.join(name), &png.bytes)?;
         }
     }
-    write("index.html", page(title, outcomes).as_bytes())?;
-    Ok(dir.join("index.html"))
+    let index = dir.join("index.html");
+    write_file(&index, page(title, outcomes).as_bytes())?;
+    Ok(index)
 }
 
-fn report_images(outcome: &Outcome) -> Vec<(&'static str, &Png)> {
-    let Some(images) = &outcome.images else { return Vec::new() };
-    let mut shown = Vec::new();
-    if let Some(reference) = &images.reference {
-        shown.push(("reference", reference));
-    }
-    shown.push(("render", &images.render));
-    if let Some(diff) = &images.diff {
-        shown.push(("diff", diff));
-    }
-    shown
+/// Writes `path` atomically; the error names it.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    glint_gpu::write_atomically(path, bytes).map_err(|e| format!("{}: cannot write: {e}", path.display()))
 }
 
-fn image_name(outcome: &Outcome, role: &str) -> String {
-    format!("{}-{role}.png", outcome.file_stem)
+/// An image of the report: its file name, its role and the image.
+type Figure<'a> = (String, &'static str, &'a Png);
+
+/// The whole images of an outcome's report, and the magnified ones.
+fn report_images(outcome: &Outcome) -> (Vec<Figure<'_>>, Vec<Figure<'_>>) {
+    let Some(images) = &outcome.images else { return (Vec::new(), Vec::new()) };
+    (named(&outcome.file_stem, &images.whole, ""), named(&outcome.file_stem, &images.zoomed, "-zoom"))
+}
+
+fn named<'a>(stem: &str, images: &'a [(&'static str, Png)], suffix: &str) -> Vec<Figure<'a>> {
+    images.iter().map(|(role, png)| (format!("{stem}-{role}{suffix}.png"), *role, png)).collect()
+}
+
+/// `6/10`, in at most two decimals.
+pub fn points_text(points: Points) -> String {
+    let short = |v: f64| {
+        let s = format!("{v:.2}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    format!("{}/{}", short(points.earned), short(points.possible))
 }
 
 /// The page's HTML.
 pub fn page(title: &str, outcomes: &[Outcome]) -> String {
     let title = escape(title);
+    let graded = outcomes.iter().any(|o| o.points.is_some());
     let mut html = String::new();
     let _ = write!(
         html,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>glint test: {title}</title>\n<style>\n{STYLE}\n</style>\n</head>\n<body>\n<h1>glint test: {title}</h1>\n<p>{}</p>\n",
         Summary::of(outcomes)
     );
-    html.push_str("<table>\n<tr><th>case</th><th>result</th><th>detail</th></tr>\n");
+    let points_header = if graded { "<th>points</th>" } else { "" };
+    let _ = writeln!(html, "<table>\n<tr><th>case</th><th>result</th>{points_header}<th>settings</th><th>detail</th></tr>");
     for outcome in outcomes {
         let name = escape(&outcome.name);
         let (class, result) = match outcome.status {
@@ -73,41 +85,49 @@ pub fn page(title: &str, outcomes: &[Outcome]) -> String {
             Status::Blessed => ("", "blessed"),
             Status::Mismatch => (" class=\"failed\"", "differs"),
             Status::NoGolden => (" class=\"failed\"", "no golden"),
+            Status::NoImage => (" class=\"failed\"", "no image"),
             Status::Error => (" class=\"failed\"", "error"),
         };
         let linked = if outcome.status.failed() { format!("<a href=\"#{}\">{name}</a>", anchor(outcome)) } else { name };
-        let _ = writeln!(html, "<tr{class}><td>{linked}</td><td>{result}</td><td>{}</td></tr>", escape(&outcome.detail));
+        let points = outcome.points.map_or(String::new(), |p| format!("<td>{}</td>", points_text(p)));
+        let settings = escape(outcome.settings.as_deref().unwrap_or(""));
+        let _ = writeln!(html, "<tr{class}><td>{linked}</td><td>{result}</td>{points}<td>{settings}</td><td>{}</td></tr>", escape(&outcome.detail));
     }
     html.push_str("</table>\n");
     for outcome in outcomes.iter().filter(|o| o.status.failed()) {
-        let _ = write!(
-            html,
-            "<section id=\"{}\">\n<h2>{}</h2>\n<p class=\"failed\">{}</p>\n<p>scene <code>{}</code>, golden <code>{}</code></p>\n",
-            anchor(outcome),
-            escape(&outcome.name),
-            escape(&outcome.detail),
-            escape(&outcome.scene.display().to_string()),
-            escape(&outcome.golden.display().to_string())
-        );
-        let images = report_images(outcome);
-        if !images.is_empty() {
-            html.push_str("<div class=\"images\">\n");
-            let scale = images.iter().map(|(_, png)| png.width).min().map_or(1, |w| SHOWN_WIDTH.div_ceil(w).clamp(1, 8));
-            for (role, png) in images {
-                let _ = writeln!(
-                    html,
-                    "<figure><img src=\"{}\" alt=\"{role}\" width=\"{}\" height=\"{}\"><figcaption>{role}</figcaption></figure>",
-                    escape(&image_name(outcome, role)),
-                    png.width * scale,
-                    png.height * scale
-                );
-            }
-            html.push_str("</div>\n");
+        let _ = write!(html, "<section id=\"{}\">\n<h2>{}</h2>\n<p class=\"failed\">{}</p>\n", anchor(outcome), escape(&outcome.name), escape(&outcome.detail));
+        let files: Vec<String> =
+            outcome.files.iter().map(|(role, path)| format!("{role} <code>{}</code>", escape(&path.display().to_string()))).collect();
+        let _ = writeln!(html, "<p>{}</p>", files.join(", "));
+        if let Some(settings) = &outcome.settings {
+            let _ = writeln!(html, "<p>settings: {}</p>", escape(settings));
         }
+        let (whole, zoomed) = report_images(outcome);
+        figures(&mut html, &whole, "");
+        figures(&mut html, &zoomed, ", worst region magnified");
         html.push_str("</section>\n");
     }
     html.push_str("</body>\n</html>\n");
     html
+}
+
+/// A row of images, each captioned with its role and `caption`.
+fn figures(html: &mut String, figures: &[Figure<'_>], caption: &str) {
+    if figures.is_empty() {
+        return;
+    }
+    html.push_str("<div class=\"images\">\n");
+    let scale = figures.iter().map(|(_, _, png)| png.width).min().map_or(1, |w| SHOWN_WIDTH.div_ceil(w).clamp(1, 8));
+    for (name, role, png) in figures {
+        let _ = writeln!(
+            html,
+            "<figure><img src=\"{}\" alt=\"{role}{caption}\" width=\"{}\" height=\"{}\"><figcaption>{role}{caption}</figcaption></figure>",
+            escape(name),
+            png.width * scale,
+            png.height * scale
+        );
+    }
+    html.push_str("</div>\n");
 }
 
 fn anchor(outcome: &Outcome) -> String {
@@ -117,7 +137,7 @@ fn anchor(outcome: &Outcome) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::runner::ReportImages;
+    use crate::comparison::ReportImages;
 
     fn png(width: u32, height: u32) -> Png {
         Png { bytes: vec![1, 2, 3], width, height }
@@ -127,21 +147,25 @@ mod tests {
         Outcome {
             name: name.into(),
             file_stem: name.replace(' ', "_"),
-            scene: format!("{name}.toml").into(),
-            golden: format!("{name}.png").into(),
+            files: vec![("scene", format!("{name}.toml").into()), ("golden", format!("{name}.png").into())],
+            settings: Some("view shaded, max depth 2, 1 spp, 160x120".into()),
             status,
             detail: format!("detail of {name} <b>"),
+            points: None,
             images,
         }
     }
 
     #[test]
     fn failing_cases_show_reference_render_and_diff_side_by_side() {
-        let images = ReportImages { reference: Some(png(160, 120)), render: png(160, 120), diff: Some(png(200, 154)) };
+        let images = ReportImages {
+            whole: vec![("reference", png(160, 120)), ("render", png(160, 120)), ("diff", png(200, 154))],
+            zoomed: vec![("reference", png(192, 192)), ("render", png(192, 192))],
+        };
         let outcomes = [
             outcome("fine", Status::Passed, None),
             outcome("bad one", Status::Mismatch, Some(images)),
-            outcome("new", Status::NoGolden, Some(ReportImages { reference: None, render: png(40, 30), diff: None })),
+            outcome("new", Status::NoGolden, Some(ReportImages { whole: vec![("render", png(40, 30))], zoomed: Vec::new() })),
         ];
         let html = page("suite & co", &outcomes);
         assert!(html.contains("<title>glint test: suite &amp; co</title>"), "{html}");
@@ -155,13 +179,21 @@ mod tests {
         assert!(html.contains("<img src=\"new-render.png\""));
         assert!(!html.contains("new-reference.png") && !html.contains("fine-render.png"));
         assert!(html.contains("<a href=\"#case-bad_one\">bad one</a>") && html.contains("<section id=\"case-bad_one\">"));
+        // The worst region of reference and render, side by side, magnified.
+        for role in ["reference", "render"] {
+            let zoom = format!("<img src=\"bad_one-{role}-zoom.png\" alt=\"{role}, worst region magnified\" width=\"384\"");
+            assert!(html.contains(&zoom), "{role}: {html}");
+        }
+        // What made the image: the settings, in the table and in the case's section.
+        assert_eq!(html.matches("view shaded, max depth 2, 1 spp, 160x120").count(), 3 + 2, "{html}");
+        assert!(html.contains("<p>scene <code>bad one.toml</code>, golden <code>bad one.png</code></p>"), "{html}");
     }
 
     #[test]
     fn the_report_directory_holds_the_page_and_its_images() {
         let dir = tempfile::tempdir().unwrap();
         let report = dir.path().join("report");
-        let images = ReportImages { reference: Some(png(4, 4)), render: png(4, 4), diff: None };
+        let images = ReportImages { whole: vec![("reference", png(4, 4)), ("render", png(4, 4))], zoomed: Vec::new() };
         let outcomes = [outcome("size", Status::Mismatch, Some(images))];
         let index = write_report(&report, "t", &outcomes).unwrap();
         assert_eq!(index, report.join("index.html"));

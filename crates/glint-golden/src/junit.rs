@@ -8,13 +8,30 @@ use std::fmt::Write;
 use crate::markup::escape;
 use crate::runner::{Outcome, Status, Summary};
 
+/// One `testsuite` named `suite_name`.
 pub fn junit_xml(suite_name: &str, outcomes: &[Outcome]) -> String {
+    junit_xml_suites(suite_name, &[(suite_name, outcomes)])
+}
+
+/// One `testsuite` per named list of outcomes (a graded run's students),
+/// all in a `testsuites` named `name`.
+pub fn junit_xml_suites(name: &str, suites: &[(&str, &[Outcome])]) -> String {
+    let all: Vec<&Outcome> = suites.iter().flat_map(|(_, outcomes)| outcomes.iter()).collect();
+    let failures = all.iter().filter(|o| o.status.failed()).count();
+    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let _ = writeln!(xml, "<testsuites name=\"{}\" tests=\"{}\" failures=\"{failures}\" errors=\"0\">", escape(name), all.len());
+    for (suite_name, outcomes) in suites {
+        testsuite(&mut xml, suite_name, outcomes);
+    }
+    xml.push_str("</testsuites>\n");
+    xml
+}
+
+fn testsuite(xml: &mut String, suite_name: &str, outcomes: &[Outcome]) {
     let summary = Summary::of(outcomes);
     let name = escape(suite_name);
     let classname = escape(&format!("glint.{suite_name}"));
     let (tests, failures) = (outcomes.len(), summary.failed);
-    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    let _ = writeln!(xml, "<testsuites name=\"{name}\" tests=\"{tests}\" failures=\"{failures}\" errors=\"0\">");
     let _ = writeln!(xml, "  <testsuite name=\"{name}\" tests=\"{tests}\" failures=\"{failures}\" errors=\"0\" skipped=\"0\">");
     for outcome in outcomes {
         let case = escape(&outcome.name);
@@ -22,6 +39,7 @@ pub fn junit_xml(suite_name: &str, outcomes: &[Outcome]) -> String {
             Status::Passed | Status::Blessed => None,
             Status::Mismatch => Some("mismatch"),
             Status::NoGolden => Some("no-golden"),
+            Status::NoImage => Some("no-image"),
             Status::Error => Some("error"),
         };
         match kind {
@@ -31,18 +49,12 @@ pub fn junit_xml(suite_name: &str, outcomes: &[Outcome]) -> String {
             Some(kind) => {
                 let detail = escape(&outcome.detail);
                 let _ = writeln!(xml, "    <testcase name=\"{case}\" classname=\"{classname}\">");
-                let _ = writeln!(
-                    xml,
-                    "      <failure type=\"{kind}\" message=\"{detail}\">{detail}\nscene: {}\ngolden: {}</failure>",
-                    escape(&outcome.scene.display().to_string()),
-                    escape(&outcome.golden.display().to_string())
-                );
+                let _ = writeln!(xml, "      <failure type=\"{kind}\" message=\"{detail}\">{}</failure>", escape(&outcome.explanation()));
                 let _ = writeln!(xml, "    </testcase>");
             }
         }
     }
-    xml.push_str("  </testsuite>\n</testsuites>\n");
-    xml
+    xml.push_str("  </testsuite>\n");
 }
 
 #[cfg(test)]
@@ -54,10 +66,11 @@ mod tests {
         Outcome {
             name: name.into(),
             file_stem: name.into(),
-            scene: format!("scenes/{name}.toml").into(),
-            golden: format!("goldens/{name}.png").into(),
+            files: vec![("scene", format!("scenes/{name}.toml").into()), ("golden", format!("goldens/{name}.png").into())],
+            settings: Some("view shaded, max depth 5, 1 spp, 64x48".into()),
             status,
             detail: detail.into(),
+            points: None,
             images: None,
         }
     }
@@ -135,5 +148,23 @@ mod tests {
         assert_eq!(failures.iter().map(|f| parent_name(f).unwrap()).collect::<Vec<_>>(), ["bad <&>", "new"]);
         assert!(cases.iter().all(|c| elements[c.parent.unwrap()].name == "testsuite"));
         assert_eq!(suite.parent, Some(0));
+        // A failure says what made the image and which files were compared.
+        let body = "flip 0.5 &gt; 0.01, &quot;quoted&quot;\nsettings: view shaded, max depth 5, 1 spp, 64x48\nscene: scenes/bad &lt;&amp;&gt;.toml\ngolden:";
+        assert!(xml.contains(body), "{xml}");
+    }
+
+    #[test]
+    fn each_student_is_a_testsuite() {
+        let alice = [outcome("balls", Status::Passed, "flip 0 <= 0.01")];
+        let bob = [outcome("balls", Status::NoImage, "no image"), outcome("room", Status::Mismatch, "flip 0.2 > 0.01")];
+        let elements = parse(&junit_xml_suites("course", &[("alice", &alice), ("bob", &bob)]));
+        let attribute = |e: &Element, key: &str| e.attributes.iter().find(|(k, _)| k == key).map(|(_, v)| v.clone());
+        let totals: Vec<_> = ["tests", "failures"].iter().map(|k| attribute(&elements[0], k).unwrap()).collect();
+        assert_eq!(totals, ["3", "2"]);
+        let suites: Vec<_> =
+            elements.iter().filter(|e| e.name == "testsuite").map(|e| (attribute(e, "name").unwrap(), attribute(e, "failures").unwrap())).collect();
+        assert_eq!(suites, [("alice".to_string(), "0".to_string()), ("bob".into(), "2".into())]);
+        let kinds: Vec<_> = elements.iter().filter(|e| e.name == "failure").map(|e| attribute(e, "type").unwrap()).collect();
+        assert_eq!(kinds, ["no-image", "mismatch"]);
     }
 }

@@ -10,8 +10,10 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::criteria::Criteria;
+use crate::grading::{GradedCase, Reference};
 use crate::image_io;
-use crate::settings::{CompareSettings, RenderSettings};
+use crate::scoring::{BandDef, Scoring};
+use crate::settings::{Checked, CompareSettings, PositiveFinite, RenderSettings};
 
 /// One scene, rendered and compared with one golden image.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,11 +27,15 @@ pub struct Case {
 }
 
 impl Case {
-    /// The name with anything but letters, digits, `.`, `_` and `-` replaced
-    /// by `_`: the stem of the case's files in a report.
     pub fn file_stem(&self) -> String {
-        self.name.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') { c } else { '_' }).collect()
+        file_stem_of(&self.name)
     }
+}
+
+/// `name` with anything but letters, digits, `.`, `_` and `-` replaced by
+/// `_`: the stem of a case's files, or a student's folder, in a report.
+pub fn file_stem_of(name: &str) -> String {
+    name.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') { c } else { '_' }).collect()
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -39,6 +45,8 @@ pub struct Suite {
     /// The manifest or directory the suite was read from.
     pub source: PathBuf,
     pub cases: Vec<Case>,
+    /// The cases that grade submitted images.
+    pub graded: Vec<GradedCase>,
 }
 
 const SCENE_EXTENSIONS: [&str; 3] = ["toml", "nff", "obj"];
@@ -57,13 +65,18 @@ struct ManifestFile {
     scenes: Vec<Spanned<ScenesDef>>,
 }
 
-/// `[[case]]`: one scene and its golden.
+/// `[[case]]`: one scene and its golden; or, with `image`, a submitted
+/// image and its reference, a scene or a file.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CaseDef {
     name: Option<String>,
-    scene: String,
+    scene: Option<String>,
     golden: Option<PathBuf>,
+    image: Option<String>,
+    points: Option<Checked<PositiveFinite>>,
+    #[serde(default)]
+    partial: Vec<Spanned<BandDef>>,
     #[serde(default)]
     render: RenderSettings,
     #[serde(default)]
@@ -111,7 +124,7 @@ impl Suite {
                 Case { name, scene, golden, render: RenderSettings::default(), criteria }
             })
             .collect();
-        let suite = Suite { name: directory_name(dir), source: dir.to_path_buf(), cases };
+        let suite = Suite { name: directory_name(dir), source: dir.to_path_buf(), cases, graded: Vec::new() };
         suite.check_names(|_| None)?;
         Ok(suite)
     }
@@ -127,9 +140,13 @@ impl Suite {
 
         // Cases keep the order of their tables in the file.
         let mut entries: Vec<(usize, Vec<Case>)> = Vec::new();
+        let mut graded = Vec::new();
         for def in &file.case {
-            let case = case_of(def.get_ref(), base, &file.render, &file.compare).map_err(|m| at(def.span().start, m))?;
-            entries.push((def.span().start, vec![case]));
+            let start = def.span().start;
+            match case_of(def.get_ref(), base, &file.render, &file.compare).map_err(|(offset, m)| at(offset.unwrap_or(start), m))? {
+                Parsed::Golden(case) => entries.push((start, vec![case])),
+                Parsed::Graded(case) => graded.push((start, case)),
+            }
         }
         for def in &file.scenes {
             let cases = scene_cases(def.get_ref(), base, &file.render, &file.compare).map_err(|m| at(def.span().start, m))?;
@@ -138,11 +155,18 @@ impl Suite {
         entries.sort_by_key(|(offset, _)| *offset);
         let starts: Vec<(usize, usize)> = entries.iter().map(|(offset, cases)| (*offset, cases.len())).collect();
         let cases: Vec<Case> = entries.into_iter().flat_map(|(_, cases)| cases).collect();
-        if cases.is_empty() {
+        if cases.is_empty() && graded.is_empty() {
             return Err(LoadError::new(path, None, "no cases: add [[case]] or [[scenes]] tables"));
         }
+        let mut stems = HashMap::new();
+        for (offset, case) in &graded {
+            if let Some(earlier) = stems.insert(case.file_stem(), &case.name) {
+                return Err(at(*offset, format!("graded cases `{earlier}` and `{}` have the same name", case.name)));
+            }
+        }
+        let graded = graded.into_iter().map(|(_, case)| case).collect();
         let name = file.name.unwrap_or_else(|| path.file_stem().map_or_else(|| "glint".into(), |s| s.to_string_lossy().into_owned()));
-        let suite = Suite { name, source: path.to_path_buf(), cases };
+        let suite = Suite { name, source: path.to_path_buf(), cases, graded };
         // A duplicate is reported at the table that brought it in.
         let table_of = |index: usize| {
             let mut end = 0;
@@ -180,11 +204,20 @@ impl Suite {
 
     /// The cases named, in the suite's order; all of them when `names` is empty.
     pub fn select(&self, names: &[String]) -> Result<Vec<&Case>, String> {
-        if let Some(unknown) = names.iter().find(|n| !self.cases.iter().any(|c| &c.name == *n)) {
-            return Err(format!("{}: no case named `{unknown}`", self.source.display()));
-        }
-        Ok(self.cases.iter().filter(|c| names.is_empty() || names.contains(&c.name)).collect())
+        chosen(&self.source, &self.cases, |c| &c.name, names)
     }
+
+    /// The graded cases named, as [`Suite::select`] chooses.
+    pub fn select_graded(&self, names: &[String]) -> Result<Vec<&GradedCase>, String> {
+        chosen(&self.source, &self.graded, |c| &c.name, names)
+    }
+}
+
+fn chosen<'a, T>(source: &Path, all: &'a [T], name: fn(&T) -> &String, names: &[String]) -> Result<Vec<&'a T>, String> {
+    if let Some(unknown) = names.iter().find(|n| !all.iter().any(|c| name(c) == *n)) {
+        return Err(format!("{}: no case named `{unknown}`", source.display()));
+    }
+    Ok(all.iter().filter(|c| names.is_empty() || names.contains(name(c))).collect())
 }
 
 fn directory_name(dir: &Path) -> String {
@@ -192,27 +225,53 @@ fn directory_name(dir: &Path) -> String {
     absolute.components().next_back().map_or_else(|| "scenes".into(), |c| c.as_os_str().to_string_lossy().into_owned())
 }
 
-fn case_of(def: &CaseDef, base: &Path, render: &RenderSettings, compare: &CompareSettings) -> Result<Case, String> {
-    let scene = Path::new(&def.scene);
-    let spd = glint_scene::spd::spec_of(scene);
+enum Parsed {
+    Golden(Case),
+    Graded(GradedCase),
+}
+
+/// A case, or the error and the offset of the band it is about (else the case's).
+fn case_of(def: &CaseDef, base: &Path, render: &RenderSettings, compare: &CompareSettings) -> Result<Parsed, (Option<usize>, String)> {
+    const NO_SCENE: &str = "scene: a case needs a `scene` (or an `image` to grade)";
+    let fail = |message: &str| Err((None, message.to_string()));
+    if def.scene.is_none() && def.image.is_none() {
+        return fail(NO_SCENE);
+    }
+    let spd = def.scene.as_deref().and_then(|s| glint_scene::spd::spec_of(Path::new(s)));
+    let stem = |path: &str| Path::new(path).file_stem().map(|s| s.to_string_lossy().into_owned());
     let name = match (&def.name, spd) {
         (Some(name), _) => name.clone(),
         (None, Some(spec)) => format!("spd-{}", spec.replace(':', "-")),
-        (None, None) => scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+        (None, None) => def.scene.as_deref().or(def.image.as_deref()).and_then(stem).unwrap_or_default(),
     };
     if name.is_empty() {
-        return Err("name: a case needs a name".into());
+        return fail("name: a case needs a name");
     }
-    let scene = if spd.is_some() { scene.to_path_buf() } else { base.join(scene) };
-    let golden = base.join(def.golden.clone().unwrap_or_else(|| PathBuf::from(format!("{name}.png"))));
-    check_golden(&golden)?;
-    Ok(Case {
-        name,
-        scene,
-        golden,
-        render: render.overridden_by(&def.render),
-        criteria: compare.overridden_by(&def.compare).criteria(),
-    })
+    let scene = def.scene.as_ref().map(|scene| if spd.is_some() { PathBuf::from(scene) } else { base.join(scene) });
+    let render = render.overridden_by(&def.render);
+    let criteria = compare.overridden_by(&def.compare).criteria();
+    let Some(image) = &def.image else {
+        if def.points.is_some() || !def.partial.is_empty() {
+            return fail("points: only a case with an `image` to grade earns points");
+        }
+        let Some(scene) = scene else { return fail(NO_SCENE) };
+        let golden = base.join(def.golden.clone().unwrap_or_else(|| PathBuf::from(format!("{name}.png"))));
+        check_golden(&golden).map_err(|m| (None, m))?;
+        return Ok(Parsed::Golden(Case { name, scene, golden, render, criteria }));
+    };
+    check_golden(Path::new(image)).map_err(|m| (None, m.replacen("golden:", "image:", 1)))?;
+    let reference = match (scene, &def.golden) {
+        (Some(scene), None) => Reference::Scene(scene),
+        (None, Some(golden)) => {
+            let golden = base.join(golden);
+            check_golden(&golden).map_err(|m| (None, m))?;
+            Reference::File(golden)
+        }
+        (Some(_), Some(_)) => return fail("golden: a graded `image` is compared with a `scene` Glint renders or a `golden` file, not both"),
+        (None, None) => return fail("image: a graded `image` needs its reference: a `scene` for Glint to render, or a `golden` file"),
+    };
+    let scoring = Scoring::of(def.points.map(|p| p.value), &def.partial, &criteria)?;
+    Ok(Parsed::Graded(GradedCase { name, image: image.clone(), reference, render, criteria, scoring }))
 }
 
 fn scene_cases(def: &ScenesDef, base: &Path, render: &RenderSettings, compare: &CompareSettings) -> Result<Vec<Case>, String> {
@@ -386,6 +445,14 @@ render = { spp = 1, width = 64, height = 48 }
             ("[[scenes]]\ndir = \"nowhere\"\n", ":1:", "dir: cannot read"),
             ("[[case]]\nscene = \"x/a.toml\"\n[[case]]\nscene = \"y/a.nff\"\n", ":3:", "have the same name"),
             ("name = \"empty\"\n", "", "no cases"),
+            ("[[case]]\ngolden = \"a.png\"\n", ":1:", "scene: a case needs a `scene` (or an `image` to grade)"),
+            ("[[case]]\nscene = \"a.toml\"\npoints = 3\n", ":1:", "points: only a case with an `image` to grade earns points"),
+            ("[[case]]\nimage = \"a.png\"\n", ":1:", "image: a graded `image` needs its reference"),
+            ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\ngolden = \"a.png\"\n", ":1:", "not both"),
+            ("[[case]]\nimage = \"{student}.jpg\"\nscene = \"a.toml\"\n", ":1:", "image: {student}.jpg: use a .png, .exr or .pfm file"),
+            ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\npoints = 0\n", ":4:", "0 is not a positive finite number"),
+            ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\n\n[[case.partial]]\nrmse = 0.1\npoints = 0\n", ":5:", "partial: the case is judged by flip"),
+            ("[[case]]\nimage = \"a.png\"\nscene = \"x/a.toml\"\n[[case]]\nimage = \"b.png\"\nscene = \"y/a.toml\"\n", ":4:", "graded cases `a` and `a`"),
         ];
         for (text, place, needle) in cases {
             let manifest = write(dir.path(), "m.toml", text);
@@ -402,6 +469,41 @@ render = { spp = 1, width = 64, height = 48 }
     }
 
     #[test]
+    fn graded_cases_name_an_image_a_reference_and_points() {
+        let dir = tempfile::tempdir().unwrap();
+        let manifest = write(
+            dir.path(),
+            "course.toml",
+            r#"
+[[case]]
+image = "{student}/balls.png"
+scene = "spd:balls:1"
+points = 10
+
+[[case.partial]]
+flip = 0.1
+points = 5
+
+[[case]]
+name = "room"
+image = "room.exr"
+golden = "refs/room.exr"
+compare = { metric = "psnr" }
+"#,
+        );
+        let suite = Suite::from_manifest(&manifest).unwrap();
+        assert!(suite.cases.is_empty());
+        let [balls, room] = &suite.graded[..] else { panic!("{:?}", suite.graded) };
+        assert_eq!((balls.name.as_str(), balls.image.as_str()), ("spd-balls-1", "{student}/balls.png"));
+        assert_eq!(balls.reference, Reference::Scene("spd:balls:1".into()));
+        assert_eq!(balls.scoring, Scoring { points: 10.0, partial: vec![crate::scoring::Band { limit: 0.1, points: 5.0 }] });
+        assert_eq!(room.reference, Reference::File(dir.path().join("refs/room.exr")));
+        assert_eq!((room.criteria.metric, room.scoring.points), (Metric::Psnr, crate::scoring::DEFAULT_POINTS));
+        let chosen: Vec<&str> = suite.select_graded(&["room".into()]).unwrap().iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(chosen, ["room"]);
+    }
+
+    #[test]
     fn selecting_cases_keeps_the_suite_order_and_refuses_unknown_names() {
         let dir = tempfile::tempdir().unwrap();
         for name in ["a.toml", "b.toml", "c.toml"] {
@@ -414,11 +516,16 @@ render = { spp = 1, width = 64, height = 48 }
         assert!(suite.select(&["d".into()]).unwrap_err().ends_with("no case named `d`"));
     }
 
+    /// The first TOML block after `heading` in docs/golden-ci.md.
+    fn documented_toml(heading: &str) -> &'static str {
+        let doc = include_str!("../../../docs/golden-ci.md");
+        let start = doc.find(heading).and_then(|i| doc[i..].find("```toml\n").map(|j| i + j + 8)).unwrap();
+        &doc[start..start + doc[start..].find("```").unwrap()]
+    }
+
     #[test]
     fn the_documented_manifest_is_valid() {
-        let doc = include_str!("../../../docs/golden-ci.md");
-        let start = doc.find("### A manifest").and_then(|i| doc[i..].find("```toml\n").map(|j| i + j + 8)).unwrap();
-        let text = &doc[start..start + doc[start..].find("```").unwrap()];
+        let text = documented_toml("### A manifest");
         let dir = tempfile::tempdir().unwrap();
         write(dir.path(), "scenes/gallery/one.toml", "");
         write(dir.path(), "scenes/gallery/big/huge.toml", "");
@@ -430,14 +537,18 @@ render = { spp = 1, width = 64, height = 48 }
     }
 
     #[test]
+    fn the_documented_grading_manifest_is_valid() {
+        let text = documented_toml("## Autograding");
+        let dir = tempfile::tempdir().unwrap();
+        let suite = Suite::from_manifest(&write(dir.path(), "course.toml", text)).unwrap_or_else(|e| panic!("{e}"));
+        let graded: Vec<(&str, f64)> = suite.graded.iter().map(|c| (c.name.as_str(), c.scoring.points)).collect();
+        assert_eq!(graded, [("balls", 10.0), ("room", 5.0)]);
+        assert_eq!(suite.graded[0].scoring.partial.len(), 1);
+    }
+
+    #[test]
     fn report_file_stems_are_safe() {
-        let case = Case {
-            name: "a b/c:d".into(),
-            scene: "s.toml".into(),
-            golden: "g.png".into(),
-            render: RenderSettings::default(),
-            criteria: Criteria::for_metric(Metric::Flip),
-        };
-        assert_eq!(case.file_stem(), "a_b_c_d");
+        assert_eq!(file_stem_of("a b/c:d"), "a_b_c_d");
+        assert_eq!(file_stem_of("ann.lee-2"), "ann.lee-2");
     }
 }

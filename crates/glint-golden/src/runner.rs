@@ -13,11 +13,10 @@ use std::sync::{mpsc, Mutex};
 
 use glint_gpu::{Image, PngBits, Renderer};
 
-use crate::criteria::judge;
-use crate::diff_map::diff_map;
-use crate::image_io::{self, encode_png, LinearImage};
+use crate::case_render::Rendered;
+use crate::comparison::{compare, ReportImages, Roles};
+use crate::image_io::{self, LinearImage};
 use crate::manifest::Case;
-use crate::metrics::measure;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
@@ -27,40 +26,23 @@ pub enum Status {
     /// Rendered and compared, and not close enough (or of another size).
     Mismatch,
     NoGolden,
-    /// The scene, the golden or the GPU failed.
+    /// A graded case's submitted image is not there.
+    NoImage,
+    /// The scene, the golden, the submitted image or the GPU failed.
     Error,
 }
 
 impl Status {
     pub fn failed(self) -> bool {
-        matches!(self, Status::Mismatch | Status::NoGolden | Status::Error)
+        matches!(self, Status::Mismatch | Status::NoGolden | Status::NoImage | Status::Error)
     }
 }
 
-/// An image encoded as PNG, with its size.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Png {
-    pub bytes: Vec<u8>,
-    pub width: u32,
-    pub height: u32,
-}
-
-impl Png {
-    fn of_rgb(rgb: &image::RgbImage) -> Self {
-        Png { bytes: encode_png(rgb), width: rgb.width(), height: rgb.height() }
-    }
-
-    fn of_linear(image: &LinearImage) -> Self {
-        Png { bytes: image.to_png(), width: image.width, height: image.height }
-    }
-}
-
-/// The images of a failing case for the HTML report.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ReportImages {
-    pub reference: Option<Png>,
-    pub render: Png,
-    pub diff: Option<Png>,
+/// What a graded case earned out of what it could.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Points {
+    pub earned: f64,
+    pub possible: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -68,11 +50,16 @@ pub struct Outcome {
     pub name: String,
     /// The stem of the case's report files.
     pub file_stem: String,
-    pub scene: PathBuf,
-    pub golden: PathBuf,
+    /// The files compared, each with its role: the scene and its golden, or
+    /// a submission and its reference.
+    pub files: Vec<(&'static str, PathBuf)>,
+    /// The render settings in words (see [`Rendered`]), when known.
+    pub settings: Option<String>,
     pub status: Status,
     /// One line: the comparison's summary, or what went wrong.
     pub detail: String,
+    /// Set for a graded case.
+    pub points: Option<Points>,
     pub images: Option<ReportImages>,
 }
 
@@ -81,22 +68,40 @@ impl Outcome {
         Outcome {
             name: case.name.clone(),
             file_stem: case.file_stem(),
-            scene: case.scene.clone(),
-            golden: case.golden.clone(),
+            files: vec![("scene", case.scene.clone()), ("golden", case.golden.clone())],
+            settings: None,
             status,
             detail,
+            points: None,
             images: None,
         }
     }
 
+    /// The detail, then the settings and the files compared, a line each:
+    /// the body of a JUnit failure or of a Gradescope test's output.
+    pub fn explanation(&self) -> String {
+        let mut text = self.detail.clone();
+        if let Some(settings) = &self.settings {
+            text += &format!("\nsettings: {settings}");
+        }
+        for (role, path) in &self.files {
+            text += &format!("\n{role}: {}", path.display());
+        }
+        text
+    }
+
     /// The case's line in `glint test`'s output.
     pub fn line(&self) -> String {
-        let label = match self.status {
+        format!("{:<7} {}: {}", self.label(), self.name, self.detail)
+    }
+
+    /// `ok`, `blessed` or `FAIL`: how a line starts.
+    pub fn label(&self) -> &'static str {
+        match self.status {
             Status::Passed => "ok",
             Status::Blessed => "blessed",
-            Status::Mismatch | Status::NoGolden | Status::Error => "FAIL",
-        };
-        format!("{label:<7} {}: {}", self.name, self.detail)
+            Status::Mismatch | Status::NoGolden | Status::NoImage | Status::Error => "FAIL",
+        }
     }
 }
 
@@ -139,7 +144,7 @@ pub struct RunOptions {
 struct Job<'a> {
     index: usize,
     case: &'a Case,
-    rendered: Result<Image, String>,
+    rendered: Result<Rendered, String>,
 }
 
 /// Runs `cases` in order on `renderer`, handing each outcome to `on_outcome`
@@ -169,7 +174,7 @@ pub fn run(cases: &[&Case], renderer: &Renderer, options: RunOptions, on_outcome
         }
         drop(done_sender);
         for (index, case) in cases.iter().enumerate() {
-            let rendered = crate::case_render::render(renderer, case);
+            let rendered = crate::case_render::render(renderer, &case.scene, &case.render);
             job_sender.send(Job { index, case, rendered }).expect("the workers outlive the jobs");
             while let Ok((index, outcome)) = done_receiver.try_recv() {
                 in_order.add(index, outcome, on_outcome);
@@ -200,51 +205,46 @@ impl InOrder {
     }
 }
 
+/// The roles of a golden test's images in its details and report.
+const GOLDEN_ROLES: Roles = Roles { reference: "reference", tested: "render" };
+
 /// Compares a rendered case with its golden, blessing it if asked.
-fn conclude(case: &Case, rendered: Result<Image, String>, options: RunOptions) -> Outcome {
-    let image = match rendered {
-        Ok(image) => image,
+fn conclude(case: &Case, rendered: Result<Rendered, String>, options: RunOptions) -> Outcome {
+    let Rendered { image, settings } = match rendered {
+        Ok(rendered) => rendered,
         Err(e) => return Outcome::new(case, Status::Error, e),
     };
+    let mut outcome = judge_render(case, &image, options);
+    outcome.settings = Some(settings);
+    outcome
+}
+
+fn judge_render(case: &Case, image: &Image, options: RunOptions) -> Outcome {
     if options.bless == Bless::All {
-        return bless(case, &image);
+        return bless(case, image);
     }
     let Some(format) = image_io::format_of(&case.golden) else {
         return Outcome::new(case, Status::Error, format!("golden {}: use a .png, .exr or .pfm file", case.golden.display()));
     };
-    let render = LinearImage::from_render(&image, format);
-    let report = |reference: Option<&LinearImage>, diff: Option<Png>| {
-        options.report_images.then(|| ReportImages { reference: reference.map(Png::of_linear), render: Png::of_linear(&render), diff })
-    };
+    let render = LinearImage::from_render(image, format);
     if !case.golden.exists() {
         if options.bless == Bless::MissingOrFailing {
-            return bless(case, &image);
+            return bless(case, image);
         }
         let mut outcome = Outcome::new(case, Status::NoGolden, format!("no golden: {}", case.golden.display()));
-        outcome.images = report(None, None);
+        outcome.images = options.report_images.then(|| ReportImages::alone(GOLDEN_ROLES.tested, &render));
         return outcome;
     }
     let (status, detail, images) = match image_io::read(&case.golden) {
-        Err(e) => (Status::Error, format!("golden {e}"), report(None, None)),
-        Ok(reference) => match measure(&reference, &render) {
-            Err(e) => (
-                Status::Mismatch,
-                format!("size {}x{}, golden {}x{}", e.test.0, e.test.1, e.reference.0, e.reference.1),
-                report(Some(&reference), None),
-            ),
-            Ok(measurement) => {
-                let verdict = judge(&measurement, &case.criteria);
-                if verdict.passed() {
-                    (Status::Passed, verdict.summary(), None)
-                } else {
-                    let diff = options.report_images.then(|| Png::of_rgb(&diff_map(&measurement, case.criteria.metric)));
-                    (Status::Mismatch, verdict.summary(), report(Some(&reference), diff))
-                }
-            }
-        },
+        Err(e) => (Status::Error, format!("golden {e}"), options.report_images.then(|| ReportImages::alone(GOLDEN_ROLES.tested, &render))),
+        Ok(reference) => {
+            let comparison = compare(&reference, &render, &case.criteria, GOLDEN_ROLES, options.report_images);
+            let status = if comparison.passed() { Status::Passed } else { Status::Mismatch };
+            (status, comparison.detail, comparison.images)
+        }
     };
     if status.failed() && options.bless == Bless::MissingOrFailing {
-        return bless(case, &image);
+        return bless(case, image);
     }
     let mut outcome = Outcome::new(case, status, detail);
     outcome.images = images;
@@ -297,11 +297,11 @@ mod tests {
     #[test]
     fn the_summary_is_the_closing_line() {
         let case = case();
-        let outcomes: Vec<Outcome> = [Status::Passed, Status::Blessed, Status::Mismatch, Status::NoGolden, Status::Error]
+        let outcomes: Vec<Outcome> = [Status::Passed, Status::Blessed, Status::Mismatch, Status::NoGolden, Status::NoImage, Status::Error]
             .into_iter()
             .map(|s| Outcome::new(&case, s, "d".into()))
             .collect();
-        assert_eq!(Summary::of(&outcomes).to_string(), "2 passed, 3 failed");
+        assert_eq!(Summary::of(&outcomes).to_string(), "2 passed, 4 failed");
         assert_eq!(outcomes[2].line(), "FAIL    c: d");
         assert_eq!(outcomes[1].line(), "blessed c: d");
     }

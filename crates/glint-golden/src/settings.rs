@@ -51,6 +51,10 @@ pub enum ViewName {
     Diffuse,
     Id,
     Heatmap,
+    #[serde(rename = "ray-depth")]
+    RayDepth,
+    #[serde(rename = "ray-count")]
+    RayCount,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
@@ -75,6 +79,23 @@ pub struct CompareSettings {
     pub threshold: Option<Checked<Finite>>,
     pub pixel_tolerance: Option<Checked<NonNegative>>,
     pub max_bad_fraction: Option<Checked<Fraction>>,
+}
+
+impl ViewName {
+    /// The name as a manifest writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewName::Shaded => "shaded",
+            ViewName::Normals => "normals",
+            ViewName::Depth => "depth",
+            ViewName::Albedo => "albedo",
+            ViewName::Diffuse => "diffuse",
+            ViewName::Id => "id",
+            ViewName::Heatmap => "heatmap",
+            ViewName::RayDepth => "ray-depth",
+            ViewName::RayCount => "ray-count",
+        }
+    }
 }
 
 impl RenderSettings {
@@ -271,6 +292,24 @@ mod tests {
         assert_eq!(psnr, Criteria::for_metric(Metric::Psnr));
         let psnr = defaults.overridden_by(&compare("metric = \"psnr\"\nthreshold = 35")).criteria();
         assert_eq!(psnr.threshold, 35.0);
+    }
+
+    #[test]
+    fn view_names_read_back_as_their_view() {
+        for view in [
+            ViewName::Shaded,
+            ViewName::Normals,
+            ViewName::Depth,
+            ViewName::Albedo,
+            ViewName::Diffuse,
+            ViewName::Id,
+            ViewName::Heatmap,
+            ViewName::RayDepth,
+            ViewName::RayCount,
+        ] {
+            let read: RenderSettings = toml::from_str(&format!("view = \"{}\"", view.name())).unwrap();
+            assert_eq!(read.view, Some(view));
+        }
     }
 
     #[test]

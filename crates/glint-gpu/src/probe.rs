@@ -181,7 +181,7 @@ impl TreeText<'_> {
     /// The scene's index of the light a shadow ray went to: the kernels see
     /// only the lights that are on, in scene order.
     pub fn scene_light(&self, ray: &ProbeRay) -> Option<usize> {
-        self.scene.lights.iter().enumerate().filter(|(_, l)| l.enabled).nth(ray.light as usize).map(|(i, _)| i)
+        glint_scene::observer::shadow_ray_light(self.scene, ray)
     }
 
     /// "object N (shape, material "name")".
@@ -201,6 +201,18 @@ impl TreeText<'_> {
         format!("object {number} ({shape}, material \"{material}\")")
     }
 
+    /// A shadow ray blocked, in opaque shadow mode, by the transmissive
+    /// object its ray hit: from inside glass the light is always blocked,
+    /// which puzzles when the glass looks clear.
+    fn blocked_by_its_own_glass(&self, ray: &ProbeRay) -> bool {
+        let Some(parent) = self.tree.rays.get(ray.parent as usize) else { return false };
+        let transmissive = self.scene.materials.get(parent.material as usize).is_some_and(|m| m.is_transmissive());
+        ray.flags & PROBE_BLOCKED != 0
+            && ray.blocker == parent.object
+            && transmissive
+            && self.scene.render.shadow_mode == glint_scene::ShadowMode::Opaque
+    }
+
     /// What `ray` is, hit and added, a line per fact; the first says which ray it is.
     pub fn describe(&self, ray: &ProbeRay) -> Vec<String> {
         let (v3, num) = (vec3_text, number_text);
@@ -216,11 +228,17 @@ impl TreeText<'_> {
             } else {
                 "reaches the light (S = 1)".to_string()
             };
-            return vec![
-                format!("shadow ray to light {light}, from {} towards {}", v3(ray.origin), v3(ray.dir)),
+            let mut lines = vec![
+                format!("shadow ray to light {light}, from {} along {}", v3(ray.origin), v3(ray.dir)),
                 format!("N·L = {}, distance {}, {state}", num(ray.n_dot_l), num(ray.distance)),
                 format!("diffuse {}, specular {}, contributes {contribution}", v3(ray.diffuse), v3(ray.specular)),
             ];
+            if self.blocked_by_its_own_glass(ray) {
+                lines.push(
+                    "the glass it leaves blocks it: shadows are opaque; with shadow_mode = \"tinted\" in [render], light passes through glass, tinted by its transmit".into(),
+                );
+            }
+            return lines;
         }
         let mut lines = vec![format!(
             "{} ray, depth {}, weight {}, from {} along {}",

@@ -2,7 +2,9 @@
 //! and putting them back together. Each part's placement — the full image's
 //! size and the region the part holds — is recorded beside it in
 //! `PART.json` (`shard0.png` → `shard0.png.json`), one format for PNG, EXR
-//! and PFM alike (PFM has no room for metadata). Stitching reads each part
+//! and PFM alike (PFM has no room for metadata), with the shard `I/N` the
+//! part is, if it is one, so that stitching can name the shards missing.
+//! Stitching reads each part
 //! back as the values it was written from and writes the whole with the same
 //! encoder, so stitched parts give the bytes of a render done in one piece.
 
@@ -17,6 +19,9 @@ pub struct Placement {
     pub width: u32,
     pub height: u32,
     pub region: Region,
+    /// `(I, N)` for the part `--shard I/N` renders; none for a `--region`,
+    /// and for parts written before Glint recorded it.
+    pub shard: Option<(u32, u32)>,
 }
 
 /// The file that records the placement of the part at `image`.
@@ -30,8 +35,9 @@ pub fn placement_path(image: &Path) -> PathBuf {
 pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), GpuError> {
     let path = placement_path(image);
     let Region { x0, y0, x1, y1 } = placement.region;
+    let shard = placement.shard.map_or(String::new(), |(index, count)| format!(", \"shard\": [{index}, {count}]"));
     let text = format!(
-        "{{\"glint_part\": 1, \"image\": [{}, {}], \"region\": [{x0}, {y0}, {x1}, {y1}]}}\n",
+        "{{\"glint_part\": 1, \"image\": [{}, {}], \"region\": [{x0}, {y0}, {x1}, {y1}]{shard}}}\n",
         placement.width, placement.height
     );
     write_atomically(&path, text.as_bytes()).map_err(|e| GpuError::Output(format!("{}: {e}", path.display())))
@@ -56,16 +62,28 @@ pub fn read_placement(image: &Path) -> Result<Placement, String> {
         numbers.filter(|n| n.len() == count).ok_or_else(wrong)
     };
     let (image_size, region) = (numbers("image", 2)?, numbers("region", 4)?);
+    let shard = match value.get("shard") {
+        Some(_) => Some(numbers("shard", 2).map(|n| (n[0], n[1]))?),
+        None => None,
+    };
     let placement = Placement {
         width: image_size[0],
         height: image_size[1],
         region: Region { x0: region[0], y0: region[1], x1: region[2], y1: region[3] },
+        shard,
     };
-    if placement.region.is_empty() || !Region::whole(placement.width, placement.height).contains(&placement.region) {
+    let whole = Region::whole(placement.width, placement.height);
+    if placement.region.is_empty() || !whole.contains(&placement.region) {
         return Err(format!(
             "{shown}: the region {} is empty or not inside the {}x{} image",
             placement.region, placement.width, placement.height
         ));
+    }
+    if let Some((index, count)) = shard
+        && (index >= count || whole.strip(index, count) != placement.region)
+    {
+        let (region, width, height) = (placement.region, placement.width, placement.height);
+        return Err(format!("{shown}: the region {region} is not shard {index}/{count} of the {width}x{height} image"));
     }
     Ok(placement)
 }
@@ -99,9 +117,10 @@ struct Part {
 }
 
 /// Assembles `parts` into the image they are parts of and writes it to
-/// `output` (the parts' format). The parts must be of one image, stored
-/// alike, and cover it exactly once; each problem is one line naming a file.
-pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(), GpuError> {
+/// `output` (the parts' format), and returns its width and height. The parts
+/// must be of one image, stored alike, and cover it exactly once; each
+/// problem is one line naming a file.
+pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> {
     let parts: Vec<Part> = parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>().map_err(GpuError::Stitch)?;
     let first = parts.first().ok_or_else(|| GpuError::Stitch("no parts to stitch".into()))?;
     let (width, height, encoding) = (first.placement.width, first.placement.height, first.encoding);
@@ -147,7 +166,8 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(), GpuError> {
     for part in &parts {
         sink.paste(&part.image, part.placement.region.x0, part.placement.region.y0)?;
     }
-    sink.finish()?.commit()
+    sink.finish()?.commit()?;
+    Ok((width, height))
 }
 
 /// Checks that the parts' regions cover the `width` × `height` image exactly
@@ -171,10 +191,41 @@ fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), GpuErro
         let covered: u64 = regions.iter().map(Region::pixels).sum();
         let missing = u64::from(width) * u64::from(height) - covered;
         return Err(GpuError::Stitch(format!(
-            "the parts leave {missing} pixels of the {width}x{height} image uncovered, the first at ({x}, {y}): a part is missing"
+            "the parts leave {missing} pixels of the {width}x{height} image uncovered, the first at ({x}, {y}): {}",
+            missing_shards(parts).unwrap_or_else(|| "a part is missing".into())
         )));
     }
     Ok(())
+}
+
+/// Which shards are missing and how to render just them, when every part is a
+/// shard of one count. A Slurm array index is the shard index, so the missing
+/// indices are also the `--array` that reruns them.
+fn missing_shards(parts: &[Part]) -> Option<String> {
+    let shards: Vec<(u32, u32)> = parts.iter().map(|p| p.placement.shard).collect::<Option<_>>()?;
+    let count = shards.first()?.1;
+    if shards.iter().any(|&(_, n)| n != count) {
+        return None;
+    }
+    let missing: Vec<u32> = (0..count).filter(|i| !shards.contains(&(*i, count))).collect();
+    let list = index_ranges(&missing);
+    Some(match missing.len() {
+        1 => format!("shard {list} of {count} is missing: render it again (in a Slurm job array, --array={list})"),
+        _ => format!("shards {list} of {count} are missing: render them again (in a Slurm job array, --array={list})"),
+    })
+}
+
+/// Ascending indices as runs, as Slurm's `--array` takes them: `1-3,5`.
+fn index_ranges(indices: &[u32]) -> String {
+    let mut runs: Vec<(u32, u32)> = Vec::new();
+    for &i in indices {
+        match runs.last_mut() {
+            Some((_, last)) if *last + 1 == i => *last = i,
+            _ => runs.push((i, i)),
+        }
+    }
+    let run = |&(first, last): &(u32, u32)| if first == last { first.to_string() } else { format!("{first}-{last}") };
+    runs.iter().map(run).collect::<Vec<_>>().join(",")
 }
 
 /// The first pixel, in reading order, of no region. The regions' edges cut
@@ -197,6 +248,9 @@ fn first_uncovered(regions: &[Region], width: u32, height: u32) -> Option<(u32, 
 fn read_part(path: &Path) -> Result<Part, String> {
     let shown = path.display();
     let format = Format::from_path(path).map_err(|e| e.to_string())?;
+    if !path.exists() {
+        return Err(format!("{shown}: no such file"));
+    }
     let placement = read_placement(path)?;
     let bytes = std::fs::read(path).map_err(|e| format!("{shown}: cannot read: {e}"))?;
     let (image, encoding) = decode(&bytes, format).map_err(|e| format!("{shown}: {e}"))?;
@@ -280,5 +334,12 @@ mod tests {
         let filled: Vec<Region> = frame.iter().copied().chain([r(4, 3, 6, 5)]).collect();
         assert_eq!(first_uncovered(&filled, 10, 8), None);
         assert_eq!(first_uncovered(&[], 3, 3), Some((0, 0)));
+    }
+
+    #[test]
+    fn missing_indices_are_runs_as_slurm_arrays_take_them() {
+        assert_eq!(index_ranges(&[1]), "1");
+        assert_eq!(index_ranges(&[0, 1, 2, 5, 7, 8]), "0-2,5,7-8");
+        assert_eq!(index_ranges(&[]), "");
     }
 }

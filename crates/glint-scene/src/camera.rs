@@ -27,6 +27,14 @@ pub struct Basis {
     pub w: DVec3,
 }
 
+/// An `up` that works for a camera looking along `view`: of +y, −z and +x,
+/// the one furthest from parallel to it (the first among equals). Looking
+/// straight down, that is −z, so the image's top is towards −z.
+pub fn suggested_up(view: Vec3) -> Vec3 {
+    let view = view.normalize();
+    [Vec3::Y, Vec3::NEG_Z, Vec3::X].into_iter().min_by(|a, b| a.dot(view).abs().total_cmp(&b.dot(view).abs())).expect("three candidates")
+}
+
 /// A ray in double precision, for host-side math and tests.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray {

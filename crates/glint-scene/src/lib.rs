@@ -5,6 +5,7 @@
 pub mod animation;
 pub mod bvh;
 mod camera;
+pub mod camera_frame;
 mod error;
 pub mod eye_tiles;
 pub mod gpu_bvh;
@@ -13,6 +14,7 @@ pub mod icosphere;
 mod light;
 mod material;
 pub mod nff;
+pub mod observer;
 pub mod obj;
 pub mod polygon_split;
 mod ray_stats;

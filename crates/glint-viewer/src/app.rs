@@ -190,6 +190,18 @@ impl ViewerApp {
         self.inspector.pixel(&self.image)
     }
 
+    /// In observer mode, the camera that traced the frozen trees and the
+    /// pixels they were probed at.
+    pub fn observed(&self) -> Option<(glint_scene::Camera, Vec<(u32, u32)>)> {
+        let o = self.inspector.observed.as_ref()?;
+        Some((o.camera, o.trees.iter().map(|(pixel, _)| *pixel).collect()))
+    }
+
+    /// What is drawn over the image, in 3-D, and the camera that sees it.
+    pub fn overlay(&self) -> Option<(glint_scene::observer::Observer, glint_scene::observer::Overlay)> {
+        self.inspector.overlay(&self.image, self.document.loaded.as_ref()?)
+    }
+
     /// The ray whose node the pointer is over in the inspector.
     pub fn highlighted_ray(&self) -> Option<usize> {
         self.inspector.hovered
@@ -247,8 +259,18 @@ impl ViewerApp {
             self.open(path);
         }
         self.fly_keys(ctx);
-        if !ctx.text_edit_focused() && ctx.input(|i| i.key_pressed(egui::Key::I)) {
-            self.inspector.set_enabled(!self.inspector.enabled);
+        let key = |key| !ctx.text_edit_focused() && ctx.input(|i| i.key_pressed(key));
+        if let Some(doc) = self.document.loaded.as_mut() {
+            if key(egui::Key::I) {
+                self.inspector.set_enabled(!self.inspector.enabled, doc);
+            }
+            if key(egui::Key::O) {
+                if self.inspector.is_observing() {
+                    self.inspector.set_enabled(true, doc);
+                } else {
+                    self.inspector.enter_observer();
+                }
+            }
         }
         if self.shaders.is_watched() || self.document.is_watched() {
             // Keep looking at the files while idle.

@@ -1,35 +1,30 @@
 //! Inspect mode: a clicked pixel's ray tree, traced by the probe kernel (the
 //! trace kernel's own code, recording every ray), drawn over the image as 3D
 //! segments seen by the current camera and listed in the side panel. The pixel
-//! stays pinned and is probed again whenever the scene in the canvas changes.
+//! stays pinned and is probed again whenever the scene in the canvas changes,
+//! except in observer mode (`observer.rs`), which freezes the trees of the
+//! pixel (or its row or column) and the camera that traced them.
 //!
 //! The probe kernel is as large as the trace kernel, so it is compiled in the
 //! background the first time inspect mode is used, not at start-up.
 
 use std::sync::Arc;
 
-use egui::{CollapsingHeader, Color32, Pos2, Shape, Stroke, Ui};
-use glam::Vec3;
+use egui::{CollapsingHeader, Color32, Pos2, Stroke, Ui};
 use glint_gpu::probe::{Prober, RayTree, TreeText};
 use glint_gpu::{GpuError, RenderOptions};
-use glint_scene::gpu_types::{ProbeRay, NO_RAY, PROBE_BLOCKED, PROBE_SHADOW_TRACED, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW};
-use glint_scene::{Camera, LightKind, Projection};
+use glint_scene::camera_frame::CameraFrame;
+use glint_scene::gpu_types::{ProbeRay, NO_RAY, PROBE_BLOCKED, PROBE_SHADOW_TRACED, RAY_EYE, RAY_SHADOW};
+use glint_scene::observer::{Observer, Overlay, OverlayOptions, ProbedPixel, RayId, GRID_CELL_PIXELS};
+use glint_scene::MAX_DEPTH_LIMIT;
 
 use crate::app::one_line;
 use crate::document::LoadedScene;
 use crate::engine::Kernels;
 use crate::image::TracedImage;
 use crate::jobs::{Job, Jobs};
+use crate::observer::{paint, Observed, Spread};
 
-const EYE_COLOR: Color32 = Color32::WHITE;
-const REFLECT_COLOR: Color32 = Color32::from_rgb(80, 200, 255);
-const REFRACT_COLOR: Color32 = Color32::from_rgb(120, 255, 120);
-const LIT_COLOR: Color32 = Color32::from_rgb(255, 220, 60);
-const BLOCKED_COLOR: Color32 = Color32::from_rgb(255, 60, 60);
-const HIGHLIGHT_COLOR: Color32 = Color32::from_rgb(255, 0, 255);
-const LINE_WIDTH: f32 = 2.0;
-
-#[derive(Default)]
 pub(crate) struct Inspector {
     /// A click pins a pixel instead of selecting an object.
     pub enabled: bool,
@@ -46,6 +41,31 @@ pub(crate) struct Inspector {
     probed: Option<(u64, (u32, u32))>,
     /// The ray whose node the pointer is over in the side panel.
     pub hovered: Option<usize>,
+    /// Observer mode is wanted: it begins with the next probe of the canvas.
+    observe: bool,
+    pub observed: Option<Observed>,
+    /// The pixels observer mode follows.
+    pub spread: Spread,
+    /// The deepest rays drawn.
+    pub max_depth: u32,
+}
+
+impl Default for Inspector {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            pinned: None,
+            prober: None,
+            compiling: false,
+            tree: None,
+            probed: None,
+            hovered: None,
+            observe: false,
+            observed: None,
+            spread: Spread::default(),
+            max_depth: MAX_DEPTH_LIMIT,
+        }
+    }
 }
 
 impl Inspector {
@@ -59,9 +79,16 @@ impl Inspector {
         }
     }
 
-    /// Turning inspect mode off lets go of the pixel.
-    pub fn set_enabled(&mut self, enabled: bool) {
+    /// Sets inspect mode, and always ends observer mode, giving `doc` back the
+    /// camera the trees were traced with; turning inspect mode off lets go of
+    /// the pixel.
+    pub fn set_enabled(&mut self, enabled: bool, doc: &mut LoadedScene) {
         self.enabled = enabled;
+        self.observe = false;
+        if let Some(observed) = self.observed.take() {
+            doc.scene.camera = observed.camera;
+            self.probed = None;
+        }
         if !enabled {
             self.pinned = None;
             self.tree = None;
@@ -98,18 +125,48 @@ impl Inspector {
                 return;
             }
         }
-        let (Some(pixel), Some((_, Ok(prober)))) = (self.pixel(image), &self.prober) else { return };
+        if self.observed.is_some() {
+            return;
+        }
+        let (Some(pixel), Some((_, Ok(prober))), Some(size)) = (self.pixel(image), &self.prober, image.render_size()) else { return };
+        // Through the pixel centre, as a one-sample render traces it.
+        let options = RenderOptions { spp: 1, ..RenderOptions::default() };
+        let probe = |(x, y): (u32, u32)| prober.probe(canvas.renderer(), &canvas.prepared.buffers, x, y, &options);
+        if self.observe {
+            // The canvas is still the camera's own: probe every pixel followed now.
+            let Some(camera) = doc.map(|d| d.scene.camera) else { return };
+            let Some(frame) = CameraFrame::new(&camera, size.0, size.1) else { return };
+            match self.spread.pixels(pixel, size).into_iter().map(|p| probe(p).map(|tree| (p, tree))).collect::<Result<Vec<_>, _>>() {
+                Ok(trees) => {
+                    self.tree = Some(trees[0].1.clone());
+                    self.observed = Some(Observed { camera, frame, trees });
+                }
+                Err(e) => *error = Some(one_line(e)),
+            }
+            self.observe = false;
+            return;
+        }
         let key = (image.syncs, pixel);
         if self.probed == Some(key) {
             return;
         }
         self.probed = Some(key);
-        // Through the pixel centre, as a one-sample render traces it.
-        let options = RenderOptions { spp: 1, ..RenderOptions::default() };
-        match prober.probe(canvas.renderer(), &canvas.prepared.buffers, pixel.0, pixel.1, &options) {
+        match probe(pixel) {
             Ok(tree) => self.tree = Some(tree),
             Err(e) => *error = Some(one_line(e)),
         }
+    }
+
+    /// Asks for observer mode, which begins once the pinned pixel's canvas is
+    /// probed (the tree must be there to freeze).
+    pub fn enter_observer(&mut self) {
+        if self.enabled && self.tree.is_some() && self.observed.is_none() {
+            self.observe = true;
+        }
+    }
+
+    pub fn is_observing(&self) -> bool {
+        self.observed.is_some()
     }
 
     /// Takes a compiled probe kernel; a failure goes to `error`.
@@ -126,54 +183,52 @@ impl Inspector {
         self.compiling
     }
 
-    /// The tree's rays as segments seen by `doc`'s camera, the hovered one
-    /// highlighted, and a ring around the pinned pixel.
+    /// The overlay as drawn now and the camera that sees it: in observer
+    /// mode, the frozen frame and trees; else the pinned pixel's tree.
+    pub fn overlay(&self, image: &TracedImage, doc: &LoadedScene) -> Option<(Observer, Overlay)> {
+        let (width, height) = image.render_size()?;
+        let observer = Observer { camera: doc.scene.camera, width, height };
+        let bounds = doc.bounds;
+        let depth = OverlayOptions { max_depth: self.max_depth, grid: false };
+        let overlay = match &self.observed {
+            Some(observed) => {
+                let probed: Vec<_> = observed.trees.iter().map(|(pixel, tree)| ProbedPixel { pixel: *pixel, rays: &tree.rays }).collect();
+                let options = OverlayOptions { grid: observer.cell_size(&observed.frame) >= GRID_CELL_PIXELS, ..depth };
+                Overlay::new(&doc.scene, &observed.frame, bounds, &probed, options)
+            }
+            None => {
+                let (tree, pixel) = (self.tree.as_ref()?, self.pixel(image)?);
+                let frame = CameraFrame::new(&doc.scene.camera, width, height)?;
+                Overlay::new(&doc.scene, &frame, bounds, &[ProbedPixel { pixel, rays: &tree.rays }], depth)
+            }
+        };
+        Some((observer, overlay))
+    }
+
+    /// The overlay over the image, the hovered ray highlighted; outside
+    /// observer mode the tree's rays alone, and a ring around the pinned pixel.
     pub fn draw(&self, painter: &egui::Painter, image: &TracedImage, doc: &LoadedScene) {
-        let (Some(tree), Some(pixel)) = (&self.tree, self.pixel(image)) else { return };
-        let text = TreeText { scene: &doc.scene, tree, first_number: 1 };
-        let camera = &doc.scene.camera;
-        // Children after their parents, so a reflection draws over its eye ray.
-        for (id, ray) in tree.rays.iter().enumerate() {
-            let (start, end) = (Vec3::from(ray.origin), segment_end(&text, doc, ray));
-            let Some((a, b)) = on_screen(image, camera, doc.radius, start, end) else { continue };
-            let blocked = ray.kind == RAY_SHADOW && ray.flags & PROBE_BLOCKED != 0;
-            let color = if self.hovered == Some(id) { HIGHLIGHT_COLOR } else { ray_color(ray) };
-            let width = if self.hovered == Some(id) { LINE_WIDTH * 2.0 } else { LINE_WIDTH };
-            let outline = Stroke::new(width + 2.0, Color32::from_black_alpha(160));
-            if ray.kind == RAY_SHADOW {
-                // Dashed: a shadow ray adds no light of its own, it only asks.
-                painter.extend(Shape::dashed_line(&[a, b], outline, 6.0, 4.0));
-                painter.extend(Shape::dashed_line(&[a, b], Stroke::new(width, color), 6.0, 4.0));
-            } else {
-                painter.line_segment([a, b], outline);
-                painter.line_segment([a, b], Stroke::new(width, color));
-            }
-            if blocked {
-                let r = 5.0;
-                for d in [egui::vec2(r, r), egui::vec2(r, -r)] {
-                    painter.line_segment([b - d, b + d], Stroke::new(width + 1.0, color));
-                }
-            } else if ray.kind != RAY_SHADOW && ray.object != NO_RAY {
-                painter.circle_filled(b, width + 1.5, color);
-            }
-        }
-        if let Some(rect) = image.rect {
-            let (w, h) = image.render_size().unwrap_or((1, 1));
-            let centre = rect.min + egui::vec2((pixel.0 as f32 + 0.5) / w as f32, (pixel.1 as f32 + 0.5) / h as f32) * rect.size();
+        let (Some(rect), Some((observer, overlay))) = (image.rect, self.overlay(image, doc)) else { return };
+        let highlighted = self.hovered.map(|ray| RayId { tree: 0, ray });
+        paint(painter, rect, &observer, &overlay, highlighted, self.observed.is_none());
+        if let (None, Some(pixel)) = (&self.observed, self.pixel(image)) {
+            let (w, h) = (observer.width as f32, observer.height as f32);
+            let centre = rect.min + egui::vec2((pixel.0 as f32 + 0.5) / w, (pixel.1 as f32 + 0.5) / h) * rect.size();
             painter.circle_stroke(centre, 7.0, Stroke::new(2.0, Color32::BLACK));
-            painter.circle_stroke(centre, 6.0, Stroke::new(1.5, EYE_COLOR));
+            painter.circle_stroke(centre, 6.0, Stroke::new(1.5, Color32::WHITE));
         }
     }
 
-    /// The Inspect section: the toggle and the pinned pixel's tree, a node per ray.
-    pub fn section(&mut self, ui: &mut Ui, image: &TracedImage, doc: &LoadedScene) {
+    /// The Inspect section: the toggles, the pinned pixel's tree, a node per
+    /// ray, and what observer mode draws.
+    pub fn section(&mut self, ui: &mut Ui, image: &TracedImage, doc: &mut LoadedScene) {
+        let mut observing = self.observed.is_some() || self.observe;
         CollapsingHeader::new("Inspect rays").default_open(true).show(ui, |ui| {
-            let mut enabled = self.enabled;
-            ui.checkbox(&mut enabled, "inspect mode (I)");
-            self.set_enabled(enabled);
+            ui.checkbox(&mut self.enabled, "inspect mode (I)");
             ui.small("In inspect mode a click (or Ctrl-click at any time) pins a pixel and shows its ray tree.");
             self.hovered = None;
-            let (Some(tree), Some((x, y))) = (&self.tree, self.pixel(image)) else {
+            let pixel = self.observed.as_ref().map(|o| o.trees[0].0).or_else(|| self.pixel(image));
+            let (Some(tree), Some((x, y))) = (&self.tree, pixel) else {
                 if self.compiling {
                     ui.label("compiling the probe kernel…");
                 }
@@ -190,7 +245,28 @@ impl Inspector {
                 ui.label("(the tree has more rays than the probe records; the rest are left out)");
             }
             self.hovered = hovered;
+            ui.separator();
+            ui.checkbox(&mut observing, "observer mode (O)")
+                .on_hover_text("freeze the tree and the camera that traced it, then move around them");
+            ui.add_enabled_ui(self.observed.is_none(), |ui| {
+                ui.horizontal(|ui| {
+                    ui.label("follow");
+                    ui.radio_value(&mut self.spread, Spread::Pixel, "the pixel");
+                    ui.radio_value(&mut self.spread, Spread::Row, "its row");
+                    ui.radio_value(&mut self.spread, Spread::Column, "its column");
+                });
+            });
+            ui.add(egui::Slider::new(&mut self.max_depth, 1..=MAX_DEPTH_LIMIT).text("deepest rays drawn"));
+            ui.small(
+                "Observer mode shows the camera's frame (e, u red, v green, w blue), its view window with the pixel, \
+and the rays in 3-D: orbit, pan and zoom around them. Leaving it returns to the camera.",
+            );
         });
+        if !self.enabled || !observing {
+            self.set_enabled(self.enabled, doc);
+        } else {
+            self.enter_observer();
+        }
     }
 }
 
@@ -225,58 +301,4 @@ fn headline(text: &TreeText<'_>, id: usize, ray: &ProbeRay) -> String {
     }
     let found = if ray.object == NO_RAY { "misses: the background".to_string() } else { format!("hits {}", text.object(ray.object)) };
     format!("#{id} {kind} ray {found}")
-}
-
-fn ray_color(ray: &ProbeRay) -> Color32 {
-    match ray.kind {
-        RAY_EYE => EYE_COLOR,
-        RAY_REFLECT => REFLECT_COLOR,
-        RAY_REFRACT => REFRACT_COLOR,
-        _ if ray.flags & PROBE_BLOCKED != 0 => BLOCKED_COLOR,
-        _ => LIT_COLOR,
-    }
-}
-
-/// Where `ray`'s segment ends: at its hit, at the blocker or light of a shadow
-/// ray, and where it leaves the scene's bounds when it found nothing.
-fn segment_end(text: &TreeText<'_>, doc: &LoadedScene, ray: &ProbeRay) -> Vec3 {
-    let (origin, dir) = (Vec3::from(ray.origin), Vec3::from(ray.dir));
-    if ray.kind == RAY_SHADOW {
-        if ray.flags & PROBE_BLOCKED != 0 {
-            return origin + dir * ray.t;
-        }
-        let directional = text.scene_light(ray).is_some_and(|i| matches!(doc.scene.lights[i].kind, LightKind::Directional { .. }));
-        return origin + dir * if directional { reach(doc, origin, dir) } else { ray.distance };
-    }
-    if ray.object == NO_RAY { origin + dir * reach(doc, origin, dir) } else { Vec3::from(ray.point) }
-}
-
-/// How far along `dir` from `origin` the scene's bounds end (its size when
-/// the ray never meets them).
-fn reach(doc: &LoadedScene, origin: Vec3, dir: Vec3) -> f32 {
-    let (lo, hi) = (doc.bounds.0 - doc.radius * 0.1, doc.bounds.1 + doc.radius * 0.1);
-    let (a, b) = ((lo - origin) / dir, (hi - origin) / dir);
-    let exit = a.max(b).min_element();
-    if exit.is_finite() && exit > 0.0 { exit } else { doc.radius * 2.0 }
-}
-
-/// Segment `a`–`b` on screen, cut where it passes behind a perspective camera.
-fn on_screen(image: &TracedImage, camera: &Camera, scene_radius: f32, a: Vec3, b: Vec3) -> Option<(Pos2, Pos2)> {
-    let (mut a, mut b) = (a, b);
-    if let (Projection::Perspective { .. }, Some(basis)) = (camera.projection, camera.basis()) {
-        let forward = -basis.w.as_vec3();
-        let depth = |p: Vec3| (p - camera.eye).dot(forward);
-        // Not at the eye itself, where the eye ray starts and nothing projects.
-        let near = scene_radius * 1e-3;
-        let (da, db) = (depth(a), depth(b));
-        if da < near && db < near {
-            return None;
-        }
-        if da < near {
-            a = b + (a - b) * ((db - near) / (db - da));
-        } else if db < near {
-            b = a + (b - a) * ((da - near) / (da - db));
-        }
-    }
-    Some((image.to_screen(camera, a)?, image.to_screen(camera, b)?))
 }

@@ -6,7 +6,8 @@
 //! The image refines progressively while the view is still and restarts on any
 //! change. Lights, materials and render settings are edited live; clicking the
 //! image selects the object under the pointer; in inspect mode (I, or a
-//! Ctrl-click) it pins a pixel and shows its ray tree. The scene file and the WGSL in
+//! Ctrl-click) it pins a pixel and shows its ray tree, and observer mode (O)
+//! freezes that tree to be seen from outside. The scene file and the WGSL in
 //! `shaders/` are reloaded when they change on disk; a broken file shows its
 //! error and the last good scene or pipeline keeps running.
 
@@ -18,6 +19,7 @@ mod first_image;
 mod image;
 mod inspector;
 mod jobs;
+mod observer;
 mod panel;
 mod selection;
 mod settings;

@@ -66,7 +66,7 @@ impl ViewerApp {
             return;
         }
         self.selection_section(ui);
-        if let Some(doc) = &self.document.loaded {
+        if let Some(doc) = &mut self.document.loaded {
             self.inspector.section(ui, &self.image, doc);
         }
         self.camera_section(ui);

@@ -110,9 +110,11 @@ impl ViewerApp {
         if response.clicked_by(egui::PointerButton::Primary)
             && let Some(pos) = response.interact_pointer_pos()
         {
-            if self.inspector.enabled || ui.input(|i| i.modifiers.command) {
+            let pins = self.inspector.enabled || ui.input(|i| i.modifiers.command);
+            // The observer's image has no pixel of the frozen camera to pin.
+            if pins && !self.inspector.is_observing() {
                 self.inspector.pin(&self.image, pos);
-            } else {
+            } else if !pins {
                 self.selection.click(&self.image, doc, pos, &mut self.errors.gpu);
             }
         }

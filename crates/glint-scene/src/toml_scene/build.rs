@@ -10,7 +10,7 @@ use std::path::Path;
 use glam::Vec3;
 use toml::Spanned;
 
-use super::colour_warning;
+use super::{colour_warning, looks_like_0_to_255, short_vector as vector};
 use super::defs::{CameraDef, CheckerDef, DepthCueDef, FileDef, ImageDef, LightDef, MaterialDef, RenderDef};
 use super::mesh::Meshes;
 use super::radians_warning;
@@ -26,6 +26,9 @@ pub(super) struct Builder<'a> {
     pub(super) path: &'a Path,
     /// Problems in this file that do not stop loading, with their offsets.
     pub(super) warnings: RefCell<Vec<(usize, LoadError)>>,
+    /// The colours written 0 to 255 warned about so far: each is named once,
+    /// however often it is written.
+    pub(super) colours_0_to_255: RefCell<Vec<Vec3>>,
 }
 
 impl Builder<'_> {
@@ -53,6 +56,12 @@ impl Builder<'_> {
     pub(super) fn colour(&self, c: &Spanned<Rgb>, key: &str, reflectance: bool) -> Vec3 {
         let value = c.get_ref().0;
         if let Some(warning) = colour_warning(key, value, reflectance) {
+            if looks_like_0_to_255(value) {
+                if self.colours_0_to_255.borrow().contains(&value) {
+                    return value;
+                }
+                self.colours_0_to_255.borrow_mut().push(value);
+            }
             self.warn_at(c, warning);
         }
         value
@@ -147,12 +156,24 @@ impl Builder<'_> {
                 return Err(self.error_at(k, format!("type: unknown camera type `{other}`, expected `perspective` or `orthographic`")));
             }
         };
-        let camera_value = Camera { eye: def.eye.0, look_at: def.look_at.0, up: def.up.map_or(Vec3::Y, |u| u.0), projection };
+        let camera_value = Camera { eye: def.eye.0, look_at: def.look_at.0, up: def.up.as_ref().map_or(Vec3::Y, |u| u.get_ref().0), projection };
         if crate::view_overflows(&camera_value) {
             return Err(self.error_at(camera, "camera: eye and look_at are too far apart (the view direction overflows 32-bit floats)"));
         }
         if camera_value.basis().is_none() {
-            return Err(self.error_at(camera, "camera: `up` is parallel to the view direction (or eye equals look_at)"));
+            let view = camera_value.look_at - camera_value.eye;
+            if view == Vec3::ZERO {
+                return Err(self.error_at(camera, "camera: eye and look_at are the same point, so the camera looks nowhere"));
+            }
+            let try_up = crate::camera::suggested_up(view);
+            let (v, t) = (vector(view.normalize()), vector(try_up));
+            return Err(match &def.up {
+                Some(up) => self.error_at(up, format!("up: {} is parallel to the view direction {v}, from eye to look_at; try up = {t}", vector(up.get_ref().0))),
+                None => self.error_at(
+                    camera,
+                    format!("camera: `up` is not set, and its default [0, 1, 0] is parallel to the view direction {v}, from eye to look_at; add up = {t}"),
+                ),
+            });
         }
         Ok(camera_value)
     }

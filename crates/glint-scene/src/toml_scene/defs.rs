@@ -50,7 +50,7 @@ pub(super) struct CameraDef {
     pub(super) kind: Option<Spanned<String>>,
     pub(super) eye: V3,
     pub(super) look_at: V3,
-    pub(super) up: Option<V3>,
+    pub(super) up: Option<Spanned<V3>>,
     pub(super) fov: Option<Spanned<Num>>,
     pub(super) height: Option<Spanned<Num>>,
 }

@@ -31,10 +31,13 @@ mod animation;
 mod build;
 mod defs;
 mod mesh;
+mod notes;
 mod object;
 #[cfg(test)]
 mod tests;
 mod values;
+
+pub use notes::material_notes;
 
 use std::cell::RefCell;
 use std::path::Path;
@@ -59,7 +62,7 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
 /// Parses TOML scene text; `path` names the file in errors.
 pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
     let file: FileDef = toml::from_str(source).map_err(|e| toml_errors::explain(source, path, &e, &SCHEMA))?;
-    Builder { source, path, warnings: RefCell::new(Vec::new()) }.build(file)
+    Builder { source, path, warnings: RefCell::new(Vec::new()), colours_0_to_255: RefCell::new(Vec::new()) }.build(file)
 }
 
 /// The tables and keys of the format, for errors about unknown keys.
@@ -108,31 +111,43 @@ pub(crate) fn radians_warning(key: &str, degrees: f32) -> Option<String> {
     })
 }
 
-/// A warning for a colour with a component above 1. `reflectance`: a colour
-/// that must lie in [0, 1] (a material's); otherwise light, which may be
-/// brighter than 1 and is warned about only when it looks like 0–255 values.
+/// A number in at most two decimals, as messages show one: `0.5`, `-1`
+/// (and `0`, never `-0`).
+fn short_number(v: f32) -> String {
+    let s = format!("{:.2}", (v * 100.0).round() / 100.0 + 0.0);
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// `[0, -0.71, 0.71]`.
+pub(super) fn short_vector(v: Vec3) -> String {
+    format!("[{}, {}, {}]", short_number(v.x), short_number(v.y), short_number(v.z))
+}
+
+/// Whole numbers above 1 and up to 255: a colour written 0 to 255.
+pub(super) fn looks_like_0_to_255(c: Vec3) -> bool {
+    c.max_element() > 1.0 && c.to_array().iter().all(|v| v.fract() == 0.0 && *v <= 255.0)
+}
+
+/// A warning for a colour with a component above 1, saying how the image
+/// will look. `reflectance`: a colour that must lie in [0, 1] (a
+/// material's); otherwise light (or the background), which may be brighter
+/// than 1 and is warned about only when it looks like 0–255 values.
 pub(super) fn colour_warning(key: &str, c: Vec3, reflectance: bool) -> Option<String> {
     if c.max_element() <= 1.0 {
         return None;
     }
-    let whole = c.to_array().iter().all(|v| v.fract() == 0.0 && *v <= 255.0);
+    let whole = looks_like_0_to_255(c);
     if !reflectance && !whole {
         return None;
     }
-    let short = |v: f32| {
-        let s = format!("{:.2}", (v * 100.0).round() / 100.0);
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    let shown = |c: Vec3| if c.x == c.y && c.y == c.z { short_number(c.x) } else { short_vector(c) };
+    let (brightness, effect) = match (reflectance, key) {
+        (true, _) => ("", "what this material colours renders white"),
+        (false, "background") => ("", "the background renders white"),
+        (false, _) => (" (set the brightness with `intensity`)", "this light washes the image out to white"),
     };
-    let shown = |c: Vec3| {
-        if c.x == c.y && c.y == c.z {
-            short(c.x)
-        } else {
-            format!("[{}, {}, {}]", short(c.x), short(c.y), short(c.z))
-        }
-    };
-    let brightness = if reflectance { "" } else { " (set the brightness with `intensity`)" };
     Some(if whole {
-        format!("{key}: {} looks like 0–255 values, but colours are 0 to 1{brightness}; did you mean {}?", shown(c), shown(c / 255.0))
+        format!("{key}: {} looks like 0–255 values, but colours are 0 to 1{brightness}, so {effect}; did you mean {}?", shown(c), shown(c / 255.0))
     } else {
         format!("{key}: {} is above 1, but a material's colours are 0 to 1: it would reflect more light than arrives", shown(c))
     })

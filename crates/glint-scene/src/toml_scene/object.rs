@@ -27,11 +27,10 @@ impl Builder<'_> {
         let def = object.get_ref();
         let named = match &def.material {
             None => None,
-            Some(m) => Some(
-                *names
-                    .get(m.get_ref().as_str())
-                    .ok_or_else(|| self.error_at(m, format!("material: no material named `{}`", m.get_ref())))?,
-            ),
+            Some(m) => Some(*names.get(m.get_ref().as_str()).ok_or_else(|| {
+                let hint = crate::suggest::nearest(m.get_ref(), names.keys().copied()).map_or(String::new(), |n| format!("; did you mean `{n}`?"));
+                self.error_at(m, format!("material: no material named `{}`{hint}", m.get_ref()))
+            })?),
         };
         let material = named.unwrap_or(0);
         let kind = def.kind.get_ref().as_str();

@@ -276,7 +276,10 @@ fn warnings(src: &str) -> Vec<String> {
 #[test]
 fn colours_written_0_to_255_and_radian_angles_warn() {
     let w = warnings(&format!("{MINIMAL}[material.red]\ncolor = [230, 50, 25]\n"));
-    assert_eq!(w, ["w.toml:11:9: color: [230, 50, 25] looks like 0–255 values, but colours are 0 to 1; did you mean [0.9, 0.2, 0.1]?"]);
+    assert_eq!(
+        w,
+        ["w.toml:11:9: color: [230, 50, 25] looks like 0–255 values, but colours are 0 to 1, so what this material colours renders white; did you mean [0.9, 0.2, 0.1]?"]
+    );
     let w = warnings(&format!("{MINIMAL}[material.white]\ncolor = 1.5\nreflect = [0.5, 0.5, 2]\n"));
     assert_eq!(w.len(), 2, "{w:?}");
     assert!(w[0].starts_with("w.toml:11:9: color: 1.5 is above 1"), "{w:?}");
@@ -285,7 +288,10 @@ fn colours_written_0_to_255_and_radian_angles_warn() {
     let light = |c: &str| format!("{MINIMAL}[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\ncolor = {c}\n");
     assert!(warnings(&light("[1.0, 0.9, 2.5]")).is_empty());
     let w = warnings(&light("[255, 255, 255]"));
-    assert_eq!(w, ["w.toml:13:9: color: 255 looks like 0–255 values, but colours are 0 to 1 (set the brightness with `intensity`); did you mean 1?"]);
+    assert_eq!(
+        w,
+        ["w.toml:13:9: color: 255 looks like 0–255 values, but colours are 0 to 1 (set the brightness with `intensity`), so this light washes the image out to white; did you mean 1?"]
+    );
     let w = warnings(&MINIMAL.replace("fov = 40", "fov = 0.5"));
     assert_eq!(w, ["w.toml:9:7: fov: 0.5° is a very narrow view; angles are in degrees (0.5 radians is 28.6)"]);
     assert!(warnings(MINIMAL).is_empty());
@@ -348,10 +354,42 @@ fn a_checker_on_any_material() {
 }
 
 #[test]
-fn up_parallel_to_view_is_an_error() {
+fn each_colour_written_0_to_255_is_named_once() {
+    let sky = MINIMAL.replace("[image]", "[image]\nbackground = [135, 206, 235]");
+    let w = warnings(&format!("{sky}[material.red]\ncolor = [230, 50, 25]\n[material.rust]\ncolor = [230, 50, 25]\n"));
+    assert_eq!(
+        w,
+        [
+            "w.toml:3:14: background: [135, 206, 235] looks like 0–255 values, but colours are 0 to 1, so the background renders white; did you mean [0.53, 0.81, 0.92]?",
+            "w.toml:12:9: color: [230, 50, 25] looks like 0–255 values, but colours are 0 to 1, so what this material colours renders white; did you mean [0.9, 0.2, 0.1]?",
+        ]
+    );
+}
+
+#[test]
+fn a_misspelt_material_suggests_the_nearest_name() {
+    let scene = |name: &str| format!("[material.mirror]\ncolor = 0.9\nreflect = 0.9\n[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"{name}\"\n");
+    assert_eq!(error(&scene("mirorr")), "test.toml:17:12: material: no material named `mirorr`; did you mean `mirror`?");
+    assert_eq!(error(&scene("glass")), "test.toml:17:12: material: no material named `glass`");
+}
+
+#[test]
+fn up_parallel_to_view_says_the_default_and_suggests_one_that_works() {
+    let looking_down = MINIMAL.replace("eye = [0, 0, 5]", "eye = [0, 5, 0]");
+    let e = parse(&looking_down, Path::new("p.toml")).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "p.toml:6:1: camera: `up` is not set, and its default [0, 1, 0] is parallel to the view direction [0, -1, 0], from eye to look_at; add up = [0, 0, -1]"
+    );
     let src = MINIMAL.replace("fov = 40", "fov = 40\nup = [0, 0, 1]");
     let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
-    assert!(e.contains("parallel"), "{e}");
+    assert_eq!(e, "p.toml:10:6: up: [0, 0, 1] is parallel to the view direction [0, 0, -1], from eye to look_at; try up = [0, 1, 0]");
+    let src = MINIMAL.replace("eye = [0, 0, 5]", "eye = [0, 0, 0]");
+    let e = parse(&src, Path::new("p.toml")).unwrap_err().to_string();
+    assert_eq!(e, "p.toml:6:1: camera: eye and look_at are the same point, so the camera looks nowhere");
+    // The suggestion works.
+    let fixed = looking_down.replace("fov = 40", "fov = 40\nup = [0, 0, -1]");
+    assert!(parse(&fixed, Path::new("p.toml")).is_ok());
 }
 
 #[test]

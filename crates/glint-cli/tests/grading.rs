@@ -1,0 +1,203 @@
+//! `glint test --submissions` end to end on the GPU (a software adapter in CI; no
+//! adapter is a failure, never a skip): a folder of four students' images
+//! (right, slightly wrong, wrong size and missing, unreadable), made here by
+//! rendering with Glint and then changing the PNGs, is graded in one run
+//! against a reference Glint renders and one given as a file. That run writes
+//! Gradescope results.json, JUnit, a report per student and a class summary.
+
+mod suite;
+
+use std::path::Path;
+
+use suite::{arg, chromium, glint, stderr, stdout, SPHERE};
+
+const MANIFEST: &str = r#"
+name = "course"
+
+[[case]]
+name = "sphere"
+image = "sphere.png"
+scene = "scenes/sphere.toml"
+points = 10
+render = { max_depth = 2 }
+
+[[case.partial]]
+flip = 0.2
+points = 4
+
+[[case]]
+name = "ball"
+image = "{student}-ball.png"
+golden = "refs/ball.png"
+points = 5
+"#;
+
+fn render(scene: &Path, out: &Path, extra: &[&str]) {
+    let mut args = vec!["render", arg(scene), "-o", arg(out), "-q"];
+    args.extend(extra);
+    let o = glint(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+/// The course folder: the manifest, its scene and its reference file, and
+/// the submissions of ann (right), bob (a white block on the sphere), cat
+/// (half size, and no ball) and dan (a sphere.png that is not a PNG).
+fn course() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path();
+    for folder in ["scenes", "refs", "subs/ann", "subs/bob", "subs/cat", "subs/dan", "subs/.git"] {
+        std::fs::create_dir_all(root.join(folder)).unwrap();
+    }
+    let scene = root.join("scenes/sphere.toml");
+    std::fs::write(&scene, SPHERE).unwrap();
+    std::fs::write(root.join("course.toml"), MANIFEST).unwrap();
+    render(&scene, &root.join("refs/ball.png"), &["--view", "normals"]);
+
+    let right = root.join("right.png");
+    render(&scene, &right, &["--max-depth", "2"]);
+    let right_image = image::open(&right).unwrap().to_rgb8();
+    right_image.save(root.join("subs/ann/sphere.png")).unwrap();
+    let mut slightly_wrong = right_image.clone();
+    for y in 10..13 {
+        for x in 20..24 {
+            slightly_wrong.put_pixel(x, y, image::Rgb([255, 255, 255]));
+        }
+    }
+    slightly_wrong.save(root.join("subs/bob/sphere.png")).unwrap();
+    image::imageops::resize(&right_image, 24, 18, image::imageops::FilterType::Triangle).save(root.join("subs/cat/sphere.png")).unwrap();
+    std::fs::write(root.join("subs/dan/sphere.png"), b"GIF89a, not a PNG").unwrap();
+    for student in ["ann", "bob", "dan"] {
+        std::fs::copy(root.join("refs/ball.png"), root.join(format!("subs/{student}/{student}-ball.png"))).unwrap();
+    }
+    dir
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))).unwrap()
+}
+
+#[test]
+fn a_class_is_graded_in_one_run_with_every_report() {
+    let dir = course();
+    let root = dir.path();
+    let report = root.join("report");
+    let junit = root.join("junit.xml");
+    let o = glint(&[
+        "test",
+        arg(&root.join("course.toml")),
+        "--submissions",
+        arg(&root.join("subs")),
+        "--report",
+        arg(&report),
+        "--junit",
+        arg(&junit),
+    ]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 4 * 3 + 1, "{out}");
+    assert!(lines[0].starts_with("ok      ann/sphere: flip 0 <= 0.01") && lines[0].ends_with("(10/10 points)"), "{out}");
+    assert_eq!(lines[2], "ann: 2 passed, 0 failed; 15/15 points");
+    assert!(lines[3].starts_with("FAIL    bob/sphere: flip ") && lines[3].contains(", worst region 4x4 at ("), "{out}");
+    assert!(lines[3].ends_with("(4/10 points)"), "{out}");
+    assert_eq!(lines[5], "bob: 1 passed, 1 failed; 9/15 points");
+    assert_eq!(lines[6], "FAIL    cat/sphere: wrong size: the submission is 24x18, the reference 48x36 (0/10 points)");
+    let missing = root.join("subs/cat/cat-ball.png");
+    assert_eq!(lines[7], format!("FAIL    cat/ball: no image: {} is missing (0/5 points)", missing.display()));
+    let unreadable = root.join("subs/dan/sphere.png");
+    assert!(lines[9].starts_with(&format!("FAIL    dan/sphere: {}: not a readable image", unreadable.display())), "{out}");
+    assert_eq!(lines[11], "dan: 1 passed, 1 failed; 5/15 points");
+    assert_eq!(lines[12], format!("wrote {}", report.join("index.html").display()));
+
+    // Gradescope: scores, statuses, and outputs that name the case's settings
+    // and where the difference is.
+    let scores: Vec<f64> = ["ann", "bob", "cat", "dan"].iter().map(|s| json(&report.join(s).join("results.json"))["score"].as_f64().unwrap()).collect();
+    assert_eq!(scores, [15.0, 9.0, 0.0, 5.0]);
+    let bob = json(&report.join("bob/results.json"));
+    assert_eq!(bob["output"], "course: 1 passed, 1 failed; 9/15 points");
+    let sphere = &bob["tests"][0];
+    assert_eq!((&sphere["name"], &sphere["score"], &sphere["max_score"], &sphere["status"]), (&"sphere".into(), &4.0.into(), &10.0.into(), &"failed".into()));
+    let output = sphere["output"].as_str().unwrap();
+    assert!(output.contains(", worst region 4x4 at ("), "{output}");
+    assert!(output.contains("\nsettings: view shaded, max depth 2, 1 spp, 48x36\n"), "{output}");
+    assert!(output.contains(&format!("\nsubmission: {}", root.join("subs/bob/sphere.png").display())), "{output}");
+    assert_eq!(bob["tests"][1]["status"], "passed");
+    assert_eq!(bob["tests"][1]["output"].as_str().unwrap().lines().nth(1), Some("settings: reference image, 48x36"));
+    let cat = json(&report.join("cat/results.json"));
+    assert!(cat["tests"][0]["output"].as_str().unwrap().starts_with("wrong size: the submission is 24x18, the reference 48x36\n"));
+    assert_eq!((&cat["tests"][1]["status"], &cat["tests"][1]["score"]), (&"failed".into(), &0.0.into()));
+
+    // The region named is where bob's block is.
+    let at = output.split("worst region 4x4 at (").nth(1).unwrap();
+    let (x, y) = at.split_once(')').unwrap().0.split_once(", ").unwrap();
+    let (x, y): (u32, u32) = (x.parse().unwrap(), y.parse().unwrap());
+    assert!((17..=23).contains(&x) && (7..=12).contains(&y), "({x}, {y})");
+
+    // JUnit: a testsuite per student.
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    assert!(xml.contains("<testsuites name=\"course\" tests=\"8\" failures=\"4\" errors=\"0\">"), "{xml}");
+    for (student, failures) in [("ann", 0), ("bob", 1), ("cat", 2), ("dan", 1)] {
+        assert!(xml.contains(&format!("<testsuite name=\"{student}\" tests=\"2\" failures=\"{failures}\"")), "{student}: {xml}");
+    }
+    assert!(xml.contains("<failure type=\"no-image\""), "{xml}");
+
+    // Bob's report: his case's settings, and his image beside the reference
+    // at the worst region, magnified from the files written beside it.
+    let page = std::fs::read_to_string(report.join("bob/index.html")).unwrap();
+    assert!(page.contains("<td>view shaded, max depth 2, 1 spp, 48x36</td>"), "{page}");
+    for role in ["reference", "submission"] {
+        assert!(page.contains(&format!("<img src=\"sphere-{role}-zoom.png\" alt=\"{role}, worst region magnified\"")), "{page}");
+        let zoom = image::open(report.join(format!("bob/sphere-{role}-zoom.png"))).unwrap().to_rgb8();
+        assert_eq!(zoom.dimensions(), (192, 192), "{role}");
+    }
+    let zoom = image::open(report.join("bob/sphere-submission-zoom.png")).unwrap().to_rgb8();
+    assert!(zoom.pixels().any(|p| p.0 == [255, 255, 255]), "the white block is in the magnified region");
+    assert!(report.join("bob/sphere-diff.png").is_file());
+
+    // The class summary: a row per student with their points, sortable.
+    let class = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert_eq!(class.matches("<tr><td data-sort=").count(), 4, "{class}");
+    assert!(class.contains("<td data-sort=\"bob\"><a href=\"bob/index.html\">bob</a></td><td data-sort=\"9\">9/15</td><td class=\"failed\" data-sort=\"4\""), "{class}");
+    assert!(class.contains("<th data-type=\"number\">sphere</th><th data-type=\"number\">ball</th>"), "{class}");
+    // Clicking the score's header in Chromium puts the best first; again, last.
+    let click = "document.querySelectorAll('#class th')[1].click();";
+    for (clicks, order) in [(1, ["ann", "bob", "dan", "cat"]), (2, ["cat", "dan", "bob", "ann"])] {
+        let page = report.join(format!("sorted-{clicks}.html"));
+        std::fs::write(&page, class.replace("</body>", &format!("<script>{}</script></body>", click.repeat(clicks)))).unwrap();
+        let o = chromium(&["--dump-dom", &format!("file://{}", page.display())]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let rows: Vec<String> = stdout(&o).split("<tr><td data-sort=\"").skip(1).map(|r| r.split('"').next().unwrap().to_string()).collect();
+        assert_eq!(rows, order, "{clicks} click(s)");
+    }
+
+    // Gradescope's per-submission run writes the same results for one student.
+    let results = root.join("results.json");
+    let o = glint(&["test", arg(&root.join("course.toml")), "--submission", arg(&root.join("subs/bob")), "--gradescope", arg(&results)]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&results).unwrap(), std::fs::read(report.join("bob/results.json")).unwrap());
+}
+
+#[test]
+fn grading_errors_are_one_line() {
+    let dir = course();
+    let root = dir.path();
+    let manifest = root.join("course.toml");
+    let empty = tempfile::tempdir().unwrap();
+    for (args, code, needle) in [
+        (vec![arg(&manifest)], 2, "its cases grade submitted images: give --submissions DIR".to_string()),
+        (vec![arg(&manifest), "--submissions", arg(empty.path())], 3, "no student folders in the submissions directory".into()),
+        (vec![arg(&manifest), "--submissions", arg(&root.join("subs")), "--case", "nope"], 2, "no case named `nope`".into()),
+    ] {
+        let mut all = vec!["test"];
+        all.extend(&args);
+        let o = glint(&all);
+        let stderr = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {stderr}");
+        assert!(stderr.contains(&needle) && stderr.trim_end().lines().count() == 1, "{args:?}: {stderr}");
+    }
+    // A reference that cannot be made is named, after every student's grades are written.
+    std::fs::write(root.join("scenes/sphere.toml"), "[image]\nwidth = \"wide\"\n").unwrap();
+    let o = glint(&["test", arg(&manifest), "--submissions", arg(&root.join("subs"))]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).starts_with(&format!("glint: case `sphere`: reference: {}:2:", root.join("scenes/sphere.toml").display())), "{}", stderr(&o));
+}
