@@ -136,6 +136,9 @@ fn eye_tiles_follow_the_camera() {
     renderer.write_uniforms(&mut prepared.buffers, &uniforms).unwrap();
     assert!(!prepared.buffers.tuning.eye_tiles, "the tiles of the old view are not walked");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera moved in place");
+    renderer.rebin(&mut prepared, &moved);
+    assert!(prepared.buffers.tuning.eye_tiles, "rebinned for the new view");
+    support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera moved and rebinned");
 
     renderer.pose(&mut prepared, &moved).unwrap();
     assert!(prepared.buffers.tuning.eye_tiles, "posed: binned for the new view");

@@ -190,6 +190,9 @@ fn bench_times_the_kernels_of_a_long_render() {
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
     let long_render = glint_gpu::width_for(glint_gpu::LONG_RENDER_MIN_SAMPLES, false);
     assert_eq!(report["vector_bits"].to_string(), long_render, "{report}");
+    // The primary frame counts the view's host work, which is also reported apart.
+    let (primary, view) = (report["primary_ms"].as_f64().unwrap(), report["view_work_ms"].as_f64().unwrap());
+    assert!(view > 0.0 && primary >= view, "{report}");
 }
 
 #[test]
