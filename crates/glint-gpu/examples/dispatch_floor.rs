@@ -1,7 +1,7 @@
 //! What a 512×512 dispatch costs before it traces anything: kernels that do
 //! nothing, or only write a pixel, at one pixel and at 2×2 and 4×4 pixels an
-//! invocation, timed on the adapter Glint picks (docs/performance.md, "What a
-//! frame costs before its first ray"). On lavapipe every invocation and every
+//! invocation, timed on the adapter Glint picks (docs/performance.md, "What is
+//! slow, and why"). On lavapipe every invocation and every
 //! component a lane stores has a price of its own; this shows both.
 //!
 //!     cargo run --release -p glint-gpu --example dispatch_floor

@@ -11,9 +11,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
 /// The width Glint asks lavapipe for, in bits. The driver compiles optimised
 /// kernels 4 wide in about half the time it takes 8 wide, which a first image
-/// waits for (docs/performance.md, "Cold start"); 8 wide, they trace 10–25 %
-/// faster, to the same bits, which pays only in long renders
-/// ([`LONG_RENDER_MIN_SAMPLES`]).
+/// waits for; 8 wide, they trace faster, to the same bits, which pays only in
+/// long renders ([`LONG_RENDER_MIN_SAMPLES`]; docs/decisions/006-four-wide-vectors.md).
 pub const LAVAPIPE_WIDTH: &str = "128";
 /// The variable naming the directory Mesa caches compiled shaders in.
 pub const SHADER_CACHE_ENV: &str = "MESA_SHADER_CACHE_DIR";
@@ -25,20 +24,16 @@ pub const LAVAPIPE_PERF_ENV: &str = "GALLIVM_PERF";
 pub const QUICK_COMPILE_FLAG: &str = "nopt";
 /// Up to this many samples (pixels × samples per pixel × images) a command
 /// renders, the compile that a quick kernel saves outweighs the time it loses
-/// in running: measured on the SPD scenes, the break-even of a cold shaded
-/// render lies near 520,000 eye rays (docs/performance.md, "Quick kernels").
+/// in running (docs/decisions/030-quick-kernels.md).
 pub const QUICK_COMPILE_MAX_SAMPLES: u64 = 400_000;
 /// The width of quick kernels and of long renders' kernels on a CPU with
 /// 256-bit vectors (AVX2), unless the environment chooses one. Without LLVM's
-/// passes the compile grows little with the width, and a cold first render
-/// takes 5–15 % less time than at [`LAVAPIPE_WIDTH`] (docs/performance.md,
-/// 2026-12-05); optimised kernels trace 10–25 % faster at it (2026-12-06).
+/// passes the compile grows little with the width, and optimised kernels trace
+/// faster at it (docs/decisions/040-wide-vectors-for-quick-and-long-renders.md).
 const WIDE_WIDTH: &str = "256";
 /// From this many samples on, a render's optimised kernels are compiled at
-/// [`wide_width`]: the longer compile is paid back from about 3 million
-/// samples (cold shaded renders of mount and teapot: 0.2–0.5 s slower at a
-/// million samples, 0.4–1.1 s faster at 8.4 million; docs/performance.md,
-/// 2026-12-06).
+/// [`wide_width`]: from there the longer compile is paid back
+/// (docs/decisions/040-wide-vectors-for-quick-and-long-renders.md).
 pub const LONG_RENDER_MIN_SAMPLES: u64 = 4_000_000;
 
 /// `prepare_driver_environment` chose the width, and the shader cache by it, for the
@@ -118,10 +113,9 @@ pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
 /// Chooses lavapipe's kernels for the viewer, as [`compile_for_samples`] does
 /// for a command: quick ones for a scene not viewed or rendered before. What
 /// its user waits for is the first image, most of which a cold start spends
-/// compiling the trace kernel: quick kernels show it 17–30 % sooner on the
-/// triangle scenes (docs/performance.md, 2026-12-06, sixth), and trace the
-/// frames after it 0–50 % slower, until the next session compiles optimised
-/// ones for Mesa's cache.
+/// compiling the trace kernel: quick kernels show it sooner and trace the
+/// frames after it slower, until the next session compiles optimised ones for
+/// Mesa's cache (docs/decisions/047-quick-kernels-for-a-first-viewing.md).
 ///
 /// # Safety
 /// As [`compile_for_samples`].

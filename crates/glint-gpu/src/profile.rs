@@ -10,9 +10,8 @@ use crate::shaders::SceneArrays;
 use crate::tuning::{fits_uniform_tree, Tuning};
 
 /// Eye rays from which a one-off render on lavapipe traces packets: fewer
-/// trace sooner one at a time, whose kernel lavapipe compiles faster. Measured
-/// on tetra and teapot (docs/performance.md), packets repay their extra
-/// compile after about two million eye rays.
+/// trace sooner one at a time, whose kernel lavapipe compiles faster
+/// (docs/decisions/021-packets.md).
 pub const PACKET_EYE_RAYS: u64 = 2_000_000;
 
 /// SIMD group sizes whose lanes the primary kernel hands blocks of one eye

@@ -224,13 +224,12 @@ fn eye_block_file(tuning: Tuning) -> &'static str {
 pub enum SceneArrays {
     /// Storage buffers: what optimised kernels read fastest. lavapipe fetches
     /// a texel through a call, around which an optimised kernel saves and
-    /// restores its registers (primary rays about 1.4× slower, measured).
+    /// restores its registers (docs/decisions/034-scene-textures.md).
     Buffers,
     /// Textures, for kernels compiled without LLVM's optimisation passes (a
     /// first, small render on lavapipe): those keep every value in memory
     /// anyway, and a texel costs them no per-lane bounds branch, as each
-    /// component of a storage buffer's load does (a quarter less to run and a
-    /// fifth less to compile, measured; docs/performance.md).
+    /// component of a storage buffer's load does.
     Textures,
 }
 

@@ -135,8 +135,8 @@ shared_constants! {
     /// reach the kernels as textures of this many 16-byte texels a row
     /// (`prim_at` and its siblings in shaders/lib/scene_textures.wgsl): a software
     /// rasteriser fetches a texel per lane without the branch that a storage buffer's
-    /// bounds check takes per lane and component (docs/performance.md, "The
-    /// scene's arrays in textures"). A power of two, divided by with a shift.
+    /// bounds check takes per lane and component
+    /// (docs/decisions/034-scene-textures.md). A power of two, divided by with a shift.
     SCENE_TEXTURE_WIDTH: u32 = 1024;
     /// Texels of one `GpuPrim`: its vertices a, b and c, then its four words.
     PRIM_TEXELS: u32 = (std::mem::size_of::<GpuPrim>() / SCENE_TEXEL_BYTES) as u32;

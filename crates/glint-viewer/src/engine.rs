@@ -51,8 +51,8 @@ impl Kernels {
 }
 
 /// A canvas's kernels compile the view it is made for alone, which a software
-/// rasteriser compiles sooner than kernels for every view (the first image 3–4 % sooner,
-/// docs/performance.md); a dispatch of another view gets the kernels for every
+/// rasteriser compiles sooner than kernels for every view
+/// (docs/decisions/016-kernels-per-view.md); a dispatch of another view gets the kernels for every
 /// view, once (`Specialization::dispatching`).
 fn specialise(prepared: &mut Prepared, view: View) {
     let specialization = &mut prepared.buffers.specialization;
@@ -93,8 +93,8 @@ impl Canvas {
     /// are written: an edit beyond the scene's own terms (a matte scene's first
     /// mirror, a light that fades, depth cueing turned on, a deeper ray tree)
     /// switches to the kernels with every term, once. Until then the kernels
-    /// carry only what the scene uses, which a software rasteriser compiles in about two
-    /// thirds of the time, so the first image comes sooner.
+    /// carry only what the scene uses, which a software rasteriser compiles
+    /// sooner, so the first image comes sooner (docs/decisions/017-kernels-per-shading-terms.md).
     pub fn take_edits(&mut self, materials: &[GpuMaterial], lights: &[GpuLight], uniforms: &SceneUniforms, view: View) -> Result<(), GpuError> {
         let specialization = &mut self.prepared.buffers.specialization;
         if !specialization.covers(materials) || !specialization.covers_lights(lights) || !specialization.covers_uniforms(uniforms) {
