@@ -13,6 +13,7 @@ use glint_gpu::kernel_dump::{self, KernelVariant};
 use glint_gpu::shaders::{Kernel, SceneArrays, ShaderSource};
 use glint_gpu::Tuning;
 use glint_scene::gpu_types::View;
+use glint_scene::primitive_kinds::ALL_KINDS;
 use glint_scene::specialization::Specialization;
 
 /// What naga may accept for a kernel on a WebGPU device: core WebGPU, plus
@@ -86,9 +87,8 @@ fn every_kernel_validates_under_webgpu_capabilities_and_default_limits() {
         assert_portable(variant.kernel, Specialization::ALL, variant.tuning);
     }
     let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
-    let kinds = (0..64u32).map(|bits| {
-        let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
-        Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }
+    let kinds = (0..2 * (ALL_KINDS + 1)).map(|bits| {
+        Specialization { kinds: bits & ALL_KINDS, secondary_rays: bits > ALL_KINDS, ..Specialization::ALL }
     });
     let views = View::ALL.map(|view| Specialization { view: Some(view), ..Specialization::ALL });
     for kernel in Kernel::ALL.into_iter().filter(|k| k.is_specialised()) {

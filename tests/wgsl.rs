@@ -11,6 +11,7 @@ use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
 };
+use glint_scene::primitive_kinds::ALL_KINDS;
 use glint_scene::specialization::Specialization;
 
 fn module(kernel: Kernel) -> naga::Module {
@@ -46,9 +47,8 @@ fn every_specialisation_validates() {
             continue;
         }
         let views = View::ALL.map(|view| Specialization { view: Some(view), ..Specialization::ALL });
-        let kinds = (0..64u32).map(|bits| {
-            let [spheres, triangles, polygons, cones, planes, secondary_rays] = [0, 1, 2, 3, 4, 5].map(|b| bits & (1 << b) != 0);
-            Specialization { spheres, triangles, polygons, cones, planes, secondary_rays, ..Specialization::ALL }
+        let kinds = (0..2 * (ALL_KINDS + 1)).map(|bits| {
+            Specialization { kinds: bits & ALL_KINDS, secondary_rays: bits > ALL_KINDS, ..Specialization::ALL }
         });
         let plain = Specialization {
             smooth_triangles: false,

@@ -17,6 +17,7 @@ pub mod nff;
 pub mod observer;
 pub mod obj;
 pub mod polygon_split;
+pub mod primitive_kinds;
 mod ray_stats;
 mod scene;
 mod shape;

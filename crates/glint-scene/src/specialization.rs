@@ -14,18 +14,16 @@
 use crate::MAX_DEPTH_LIMIT;
 use crate::gpu_types::{
     GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
-    MATERIAL_METALLIC, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE,
+    MATERIAL_METALLIC, PRIM_TRIANGLE,
 };
+use crate::primitive_kinds::{self, ALL_KINDS, KINDS};
 
 /// The primitive kinds a kernel can intersect, whether its ray tree goes past
 /// the eye ray, the terms its shading can have, and the view it renders.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Specialization {
-    pub spheres: bool,
-    pub triangles: bool,
-    pub polygons: bool,
-    pub cones: bool,
-    pub planes: bool,
+    /// The primitive kinds: bit `code` for each (primitive_kinds.rs).
+    pub kinds: u32,
     /// Some triangle interpolates vertex normals (NFF `pp`, OBJ `vn`).
     pub smooth_triangles: bool,
     /// Some material reflects or transmits, so rays may spawn reflected and
@@ -55,11 +53,7 @@ pub struct Specialization {
 impl Specialization {
     /// Everything: for a kernel that must serve any scene.
     pub const ALL: Specialization = Specialization {
-        spheres: true,
-        triangles: true,
-        polygons: true,
-        cones: true,
-        planes: true,
+        kinds: ALL_KINDS,
         smooth_triangles: true,
         secondary_rays: true,
         refractions: true,
@@ -82,11 +76,7 @@ impl Specialization {
         }
         let materials = || scene.materials.iter().zip(&used).filter(|(_, used)| **used).map(|(m, _)| m);
         let mut needs = Specialization {
-            spheres: false,
-            triangles: false,
-            polygons: false,
-            cones: false,
-            planes: false,
+            kinds: 0,
             smooth_triangles: false,
             secondary_rays: materials().any(spawns_secondary_rays),
             refractions: materials().any(transmits),
@@ -99,17 +89,10 @@ impl Specialization {
             max_depth: uniforms.max_depth.max(1),
         };
         for p in &scene.prims {
-            match p.kind() {
-                PRIM_SPHERE => needs.spheres = true,
-                PRIM_TRIANGLE => {
-                    needs.triangles = true;
-                    needs.smooth_triangles |= p.count == 3;
-                }
-                PRIM_POLYGON => needs.polygons = true,
-                PRIM_CONE => needs.cones = true,
-                PRIM_PLANE => needs.planes = true,
-                other => unreachable!("primitive kind {other} is not packed by gpu_types"),
-            }
+            let kind = p.kind();
+            assert!(primitive_kinds::kind(kind).is_some(), "primitive kind {kind} is not packed by gpu_types");
+            needs.kinds |= 1 << kind;
+            needs.smooth_triangles |= kind == PRIM_TRIANGLE && p.count == 3;
         }
         needs
     }
@@ -118,8 +101,8 @@ impl Specialization {
     /// can make, whatever the scene's are: for a scene whose materials, lights
     /// and settings change in place (the viewer's).
     pub fn editable(self) -> Specialization {
-        let Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, .. } = self;
-        Specialization { spheres, triangles, polygons, cones, planes, smooth_triangles, view, ..Specialization::ALL }
+        let Specialization { kinds, smooth_triangles, view, .. } = self;
+        Specialization { kinds, smooth_triangles, view, ..Specialization::ALL }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -159,13 +142,14 @@ impl Specialization {
             && uniforms.max_depth <= self.max_depth
     }
 
-    fn flags(self) -> [(&'static str, bool); 13] {
-        [
-            ("HAS_SPHERES", self.spheres),
-            ("HAS_TRIANGLES", self.triangles),
-            ("HAS_POLYGONS", self.polygons),
-            ("HAS_CONES", self.cones),
-            ("HAS_PLANES", self.planes),
+    /// Whether it holds the primitive kind of `code`.
+    pub fn has(self, code: u32) -> bool {
+        self.kinds & (1 << code) != 0
+    }
+
+    fn flags(self) -> impl Iterator<Item = (&'static str, bool)> {
+        let kinds = KINDS.iter().map(move |k| (k.flag, self.has(k.code)));
+        kinds.chain([
             ("HAS_SMOOTH_TRIANGLES", self.smooth_triangles),
             ("HAS_SECONDARY_RAYS", self.secondary_rays),
             ("HAS_REFRACTIONS", self.refractions),
@@ -174,12 +158,12 @@ impl Specialization {
             ("HAS_ATTENUATION", self.attenuation),
             ("HAS_TINTED_SHADOWS", self.tinted_shadows),
             ("HAS_DEPTH_CUE", self.depth_cue),
-        ]
+        ])
     }
 
     /// The WGSL constants that carry it, appended to a kernel's prelude.
     pub fn wgsl(self) -> String {
-        let mut wgsl: String = self.flags().iter().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect();
+        let mut wgsl: String = self.flags().map(|(name, on)| format!("const {name}: bool = {on};\n")).collect();
         wgsl.push_str(&format!("const ONLY_VIEW: u32 = {}u;\n", self.view.map_or(ANY_VIEW, |view| view as u32)));
         wgsl.push_str(&format!("const MAX_DEPTH: u32 = {}u;\n", self.max_depth));
         wgsl
@@ -210,14 +194,7 @@ fn fades(light: &GpuLight) -> bool {
 
 impl std::fmt::Display for Specialization {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let names = [
-            ("spheres", self.spheres),
-            ("triangles", self.triangles),
-            ("polygons", self.polygons),
-            ("cones", self.cones),
-            ("planes", self.planes),
-        ];
-        let kinds: Vec<&str> = names.iter().filter(|(_, on)| *on).map(|(name, _)| *name).collect();
+        let kinds: Vec<String> = KINDS.iter().filter(|k| self.has(k.code)).map(|k| k.flag["HAS_".len()..].to_lowercase()).collect();
         f.write_str(if kinds.is_empty() { "no primitives".to_string() } else { kinds.join("+") }.as_str())?;
         if !self.secondary_rays {
             f.write_str(", eye rays only")?;
@@ -234,7 +211,7 @@ impl std::fmt::Display for Specialization {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu_types::GpuPrim;
+    use crate::gpu_types::{GpuPrim, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE};
     use bytemuck::Zeroable;
 
     fn of(scene: &GpuScene) -> Specialization {
@@ -258,11 +235,7 @@ mod tests {
     fn a_scene_specialises_to_the_kinds_it_holds() {
         let needs = of(&scene(&[PRIM_TRIANGLE, PRIM_CONE, PRIM_TRIANGLE], 0.5));
         let want = Specialization {
-            spheres: false,
-            triangles: true,
-            polygons: false,
-            cones: true,
-            planes: false,
+            kinds: 1 << PRIM_TRIANGLE | 1 << PRIM_CONE,
             smooth_triangles: false,
             secondary_rays: true,
             refractions: false,
