@@ -5,13 +5,13 @@ use std::mem::{offset_of, size_of};
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glint_gpu::shaders::{imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
+use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
 use glint_gpu::Tuning;
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
 };
-use glint_scene::primitive_kinds::ALL_KINDS;
+use glint_scene::primitive_kinds::{ALL_KINDS, KINDS};
 use glint_scene::specialization::Specialization;
 
 fn module(kernel: Kernel) -> naga::Module {
@@ -41,7 +41,7 @@ fn every_specialisation_validates() {
     let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false, spread: true };
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
-        let intersects = composed.files.iter().any(|(name, _)| name == "lib/primitive.wgsl");
+        let intersects = composed.files.iter().any(|(name, ..)| name == "lib/primitive.wgsl");
         assert_eq!(kernel.is_specialised(), intersects, "{kernel:?}");
         if !intersects {
             continue;
@@ -128,7 +128,7 @@ fn every_shader_file_is_embedded_and_part_of_a_kernel() {
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
         .flat_map(|&k| Tuning::all().into_iter().map(move |tuning| ShaderSource::Embedded.compose(k, Specialization::ALL, tuning).unwrap()))
-        .flat_map(|composed| composed.files.into_iter().map(|(name, _)| name))
+        .flat_map(|composed| composed.files.into_iter().map(|(name, ..)| name))
         .collect();
     for name in SOURCES {
         assert!(used.contains(*name), "shaders/{name} is in no kernel");
@@ -176,7 +176,7 @@ fn imports_are_exactly_what_each_file_uses() {
     let mut declared: BTreeMap<String, Vec<String>> = SOURCES
         .iter()
         .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n) && !is_eye_block(n))
-        .map(|n| (n.to_string(), declarations(&read(n))))
+        .map(|n| (n.to_string(), declarations(&expand(&read(n)).unwrap())))
         .collect();
     declared.insert(SCENE_ARRAYS_IMPORT.to_string(), buffers);
     declared.insert(EYE_BLOCK_IMPORT.to_string(), through_bvh);
@@ -186,7 +186,7 @@ fn imports_are_exactly_what_each_file_uses() {
     };
     for name in SOURCES {
         let source = read(name);
-        let (used, imported) = (words(&source), imports(&source));
+        let (used, imported) = (words(&expand(&source).unwrap()), imports(&source));
         for (file, names) in &declared {
             if file == name || (file == SCENE_ARRAYS_IMPORT && is_scene_arrays(name)) || (file == EYE_BLOCK_IMPORT && is_eye_block(name)) {
                 continue;
@@ -218,6 +218,42 @@ fn errors_name_the_file_and_line() {
     std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
     let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap_err().to_string();
     assert!(err.contains("lib/nowhere.wgsl"), "{err}");
+    std::fs::copy(ShaderSource::source_dir().join("lib/sphere.wgsl"), &sphere).unwrap();
+
+    // Past a generated piece, lines are still the file's own.
+    let primitive = dir.path().join("lib/primitive.wgsl");
+    let broken = std::fs::read_to_string(&primitive).unwrap().replacen("let m =", "let m = undefined_name +", 1);
+    std::fs::write(&primitive, &broken).unwrap();
+    let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap_err().to_string();
+    assert!(err.contains(&format!("shaders/lib/primitive.wgsl:{line}")), "{err}");
+    std::fs::write(&primitive, "// generated: intersect_disk\n").unwrap();
+    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap_err().to_string();
+    assert!(err.contains("shaders/lib/primitive.wgsl:1: no generated piece intersect_disk"), "{err}");
+}
+
+/// Every line of a composed kernel is the line `locate` names: a file's own,
+/// or one of the generated dispatch. Every kind's file is embedded.
+#[test]
+fn each_composed_line_is_the_line_it_is_located_at() {
+    for kernel in Kernel::ALL {
+        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
+        let mut generated = 0;
+        for (i, line) in composed.source.lines().enumerate() {
+            let place = composed.locate(i + 1);
+            let Some((file, number)) = place.strip_prefix("shaders/").and_then(|p| p.rsplit_once(':')) else {
+                generated += usize::from(place.starts_with("the generated dispatch"));
+                continue;
+            };
+            let text = std::fs::read_to_string(ShaderSource::source_dir().join(file)).unwrap();
+            assert_eq!(text.lines().nth(number.parse::<usize>().unwrap() - 1), Some(line), "{kernel:?} line {}: {place}", i + 1);
+        }
+        let pieces: usize = composed.files.iter().filter(|(name, ..)| name.starts_with("the generated dispatch")).count();
+        assert_eq!(pieces > 0, generated > 0, "{kernel:?}");
+    }
+    for kind in KINDS {
+        assert!(SOURCES.contains(&kind.file), "{} is not in shaders.rs's sources!", kind.file);
+    }
 }
 
 /// Asserts the WGSL struct `name` has exactly the given members at the host's

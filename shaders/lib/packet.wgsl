@@ -8,7 +8,7 @@
 // rays. The packet visits every node one of its rays enters, and each ray gets
 // exactly the hit `traverse` gives it alone: the same tests in the same
 // arithmetic (triangle_intersect4 and the like), the same tie-break.
-// import: bindings bvh cone plane polygon ray_frame scene_arrays sphere triangle types uniform_tree
+// import: bindings bvh ray_frame scene_arrays types uniform_tree
 
 struct Packet {
     rays: Rays4,
@@ -95,30 +95,7 @@ fn packet_test(i: u32, prim: GpuPrim, p: Packet, hit: PacketHit) -> PacketHit {
     let bound = bitcast<vec4<f32>>(bitcast<vec4<u32>>(hit.t) + vec4<u32>(1u));
     var t = vec4<f32>(MISS);
     let kind = prim_kind(prim);
-    let only_triangles = !(HAS_SPHERES || HAS_POLYGONS || HAS_CONES || HAS_PLANES);
-    let only_polygons = !(HAS_SPHERES || HAS_TRIANGLES || HAS_CONES || HAS_PLANES);
-    if only_triangles || (HAS_TRIANGLES && kind == PRIM_TRIANGLE) {
-        t = triangle_intersect4(prim, p.frame, vec4<f32>(0.0), bound);
-    } else if only_polygons || (HAS_POLYGONS && kind == PRIM_POLYGON) {
-        t = polygon_intersect4(prim, p.rays, p.frame, vec4<f32>(0.0), bound);
-    } else if HAS_PLANES && kind == PRIM_PLANE {
-        t = plane_intersect4(prim, p.rays, vec4<f32>(0.0), bound);
-    } else {
-        // Spheres and cones one ray at a time (scenes of them trace fast
-        // alone), in a loop whose count the compiler does not know, so that
-        // it keeps one copy of the tests instead of four.
-        var left = 0xfu;
-        while left != 0u {
-            let k = firstTrailingBit(left);
-            left &= left - 1u;
-            let ray = ray_of(p.rays, k);
-            if HAS_SPHERES && kind == PRIM_SPHERE {
-                t[k] = sphere_intersect(prim, ray, 0.0, bound[k]);
-            } else if HAS_CONES {
-                t[k] = cone_intersect(prim, ray, 0.0, bound[k]);
-            }
-        }
-    }
+    // generated: packet_test
     // t < hit.t fails for a miss (MISS is the largest distance).
     let closer = t < hit.t;
     let tie = (t == hit.t) & (t != vec4<f32>(MISS));

@@ -1,30 +1,13 @@
 // Dispatch on primitive kind: intersection and surface normals.
-// import: cone plane polygon ray_frame scene_arrays sphere triangle types
+// import: ray_frame scene_arrays types
 
 // Takes the primitive's index, not its value: each case then loads only the
 // fields its kind uses (a load per SIMD lane is what a software rasteriser
 // pays most for). Triangles and polygons are tested in the ray's frame, which
 // the caller makes once per ray. The HAS_ flags of the kernel's specialisation
 // (glint-scene's specialization.rs) remove the tests of kinds the scene lacks.
-fn intersect_prim(i: u32, ray: Ray, frame: RayFrame, t_min: f32, t_max: f32) -> f32 {
-    let kind = prim_kind(prim_at(i));
-    if HAS_SPHERES && kind == PRIM_SPHERE {
-        return sphere_intersect(prim_at(i), ray, t_min, t_max);
-    }
-    if HAS_TRIANGLES && kind == PRIM_TRIANGLE {
-        return triangle_intersect(prim_at(i), frame, t_min, t_max);
-    }
-    if HAS_POLYGONS && kind == PRIM_POLYGON {
-        return polygon_intersect(prim_at(i), ray, frame, t_min, t_max);
-    }
-    if HAS_CONES && kind == PRIM_CONE {
-        return cone_intersect(prim_at(i), ray, t_min, t_max);
-    }
-    if HAS_PLANES && kind == PRIM_PLANE {
-        return plane_intersect(prim_at(i), ray, t_min, t_max);
-    }
-    return MISS;
-}
+// The function is generated from glint-scene's primitive_kinds.rs.
+// generated: intersect_prim
 
 struct Surface {
     point: vec3<f32>,
@@ -40,19 +23,7 @@ fn surface_at(p: GpuPrim, ray: Ray, t: f32) -> Surface {
     var geometric: vec3<f32>;
     var shading: vec3<f32>;
     let kind = prim_kind(p);
-    if HAS_SPHERES && kind == PRIM_SPHERE {
-        geometric = sphere_normal(p, point);
-        shading = geometric;
-    } else if HAS_TRIANGLES && kind == PRIM_TRIANGLE {
-        geometric = triangle_geometric_normal(p);
-        shading = triangle_shading_normal(p, point);
-    } else if (HAS_POLYGONS && kind == PRIM_POLYGON) || (HAS_PLANES && kind == PRIM_PLANE) {
-        geometric = plane_normal(p);
-        shading = geometric;
-    } else if HAS_CONES {
-        geometric = cone_normal(p, point);
-        shading = geometric;
-    }
+    // generated: surface_normals
     let backface = dot(geometric, ray.dir) > 0.0;
     let sign = select(1.0, -1.0, backface);
     geometric *= sign;

@@ -15,6 +15,7 @@ pub mod kernel_dump;
 mod lavapipe;
 mod output;
 mod pipelines;
+pub mod primitive_dispatch;
 pub mod probe;
 mod profile;
 mod renderer;

@@ -6,16 +6,20 @@
 //! specialised to (`Specialization`) and of the device's tuning (`Tuning`),
 //! followed by the files its imports reach,
 //! each once, every file after the files it imports. So a kernel's file list
-//! is derived from the code, and holds only what the kernel uses. Errors are
-//! mapped back to the file and line they came from.
+//! is derived from the code, and holds only what the kernel uses. A line
+//! `// generated: NAME` becomes the dispatch on primitive kinds generated from
+//! glint-scene's registry (primitive_dispatch.rs), and its file imports every
+//! kind's file. Errors are mapped back to the file and line they came from.
 //!
 //! The files are embedded at build time; `ShaderSource::Dir` reads them from
 //! disk instead (the viewer's hot reload).
 
 use std::path::{Path, PathBuf};
 
+use glint_scene::primitive_kinds::KINDS;
 use glint_scene::specialization::Specialization;
 
+use crate::primitive_dispatch;
 use crate::tuning::Tuning;
 use crate::GpuError;
 
@@ -135,14 +139,57 @@ impl Kernel {
     }
 }
 
-/// The `lib/` files `source` imports, as paths relative to `shaders/`.
+/// The `lib/` files `source` imports, as paths relative to `shaders/`. A
+/// file that asks for generated dispatch also imports every kind's file, in
+/// the order of names as import lines are written.
 pub fn imports(source: &str) -> Vec<String> {
-    source
+    let mut files: Vec<String> = source
         .lines()
         .filter_map(|line| line.trim().strip_prefix("// import:"))
         .flat_map(str::split_whitespace)
         .map(|name| format!("lib/{name}.wgsl"))
-        .collect()
+        .collect();
+    if source.lines().any(|line| line.trim().starts_with(primitive_dispatch::MARKER)) {
+        files.extend(KINDS.iter().map(|k| k.file.to_string()));
+        files.sort();
+        files.dedup();
+    }
+    files
+}
+
+/// `source` with each line that asks for a generated piece replaced by it.
+pub fn expand(source: &str) -> Result<String, String> {
+    let text = |part: Part| match part {
+        Part::Own(_, text) | Part::Generated(text) => text,
+    };
+    Ok(parts(source)?.into_iter().map(text).collect())
+}
+
+/// A run of a file's own lines (the number of the first, 1-based) or a
+/// generated piece one of its lines asks for.
+enum Part {
+    Own(usize, String),
+    Generated(String),
+}
+
+/// `source` cut at the lines that ask for generated pieces, each piece made;
+/// an error names the line and the piece no one generates.
+fn parts(source: &str) -> Result<Vec<Part>, String> {
+    let mut parts = vec![Part::Own(1, String::new())];
+    for (i, line) in source.lines().enumerate() {
+        match line.trim().strip_prefix(primitive_dispatch::MARKER).map(str::trim) {
+            Some(name) => {
+                parts.push(Part::Generated(primitive_dispatch::piece(name).ok_or_else(|| format!("{}: no generated piece {name}", i + 1))?));
+                parts.push(Part::Own(i + 2, String::new()));
+            }
+            None => {
+                let Some(Part::Own(_, text)) = parts.last_mut() else { unreachable!("a piece is followed by the file's own lines") };
+                text.push_str(line);
+                text.push('\n');
+            }
+        }
+    }
+    Ok(parts)
 }
 
 /// Where the WGSL files come from.
@@ -156,19 +203,24 @@ pub enum ShaderSource {
 #[derive(Debug, Clone)]
 pub struct Composed {
     pub source: String,
-    /// (file name relative to `shaders/`, first line in `source`, 1-based)
-    pub files: Vec<(String, usize)>,
+    /// (file name relative to `shaders/`, first line in `source`, that
+    /// line's number in the file; all 1-based). A file with generated pieces
+    /// is several parts, one before and one after each piece.
+    pub files: Vec<(String, usize, usize)>,
 }
 
 /// How errors name the generated prelude.
 const PRELUDE: &str = "the generated prelude (gpu_types.rs, specialization.rs, tuning.rs)";
 
+/// How errors name a generated piece.
+const DISPATCH: &str = "the generated dispatch (primitive_kinds.rs, primitive_dispatch.rs)";
+
 impl Composed {
     /// Turns a line of the composed source into "file:line".
     pub fn locate(&self, line: usize) -> String {
-        match self.files.iter().rev().find(|(_, start)| *start <= line) {
-            Some((name, start)) if name == PRELUDE => format!("{name}, line {}", line - start + 1),
-            Some((name, start)) => format!("shaders/{name}:{}", line - start + 1),
+        match self.files.iter().rev().find(|(_, start, _)| *start <= line) {
+            Some((name, start, first)) if name == PRELUDE || name == DISPATCH => format!("{name}, line {}", line - start + first),
+            Some((name, start, first)) => format!("shaders/{name}:{}", line - start + first),
             None => format!("line {line}"),
         }
     }
@@ -272,12 +324,17 @@ impl ShaderSource {
         let mut source = glint_scene::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
         source.push_str(&tuning.wgsl());
-        let mut starts = vec![(PRELUDE.to_string(), 1)];
+        let mut lines = source.lines().count();
+        let mut starts = vec![(PRELUDE.to_string(), 1, 1)];
         for (name, text) in order {
-            starts.push((name, source.lines().count() + 1));
-            source.push_str(&text);
-            if !source.ends_with('\n') {
-                source.push('\n');
+            for part in parts(&text).map_err(|e| GpuError::Shader(format!("shaders/{name}:{e}")))? {
+                let (start, text) = match part {
+                    Part::Own(first, text) => ((name.clone(), lines + 1, first), text),
+                    Part::Generated(text) => ((DISPATCH.to_string(), lines + 1, 1), text),
+                };
+                starts.push(start);
+                lines += text.lines().count();
+                source.push_str(&text);
             }
         }
         Ok(Composed { source, files: starts })
