@@ -208,27 +208,27 @@ fn errors_name_the_file_and_line() {
         std::fs::create_dir_all(to.parent().unwrap()).unwrap();
         std::fs::copy(ShaderSource::source_dir().join(name), to).unwrap();
     }
-    let sphere = dir.path().join("lib/sphere.wgsl");
-    let broken = std::fs::read_to_string(&sphere).unwrap().replacen("let b =", "let b = undefined_name +", 1);
-    std::fs::write(&sphere, &broken).unwrap();
-    let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap_err().to_string();
-    assert!(err.contains(&format!("shaders/lib/sphere.wgsl:{line}")), "{err}");
+    let compose = || ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN);
+    // An unknown name in `file`'s first line containing `code`, which validation finds at that line.
+    let break_name = |file: &str, code: &str| {
+        let path = dir.path().join(file);
+        let broken = std::fs::read_to_string(&path).unwrap().replacen(code, &format!("{code} undefined_name +"), 1);
+        std::fs::write(&path, &broken).unwrap();
+        let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
+        let err = compose().unwrap().validate().unwrap_err().to_string();
+        assert!(err.contains(&format!("shaders/{file}:{line}")), "{err}");
+        std::fs::copy(ShaderSource::source_dir().join(file), path).unwrap();
+    };
+    break_name("lib/sphere.wgsl", "let b =");
+    // Past a generated piece, lines are still the file's own.
+    break_name("lib/primitive.wgsl", "let m =");
 
     std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap_err().to_string();
+    let err = compose().unwrap_err().to_string();
     assert!(err.contains("lib/nowhere.wgsl"), "{err}");
-    std::fs::copy(ShaderSource::source_dir().join("lib/sphere.wgsl"), &sphere).unwrap();
-
-    // Past a generated piece, lines are still the file's own.
-    let primitive = dir.path().join("lib/primitive.wgsl");
-    let broken = std::fs::read_to_string(&primitive).unwrap().replacen("let m =", "let m = undefined_name +", 1);
-    std::fs::write(&primitive, &broken).unwrap();
-    let line = broken.lines().position(|l| l.contains("undefined_name")).unwrap() + 1;
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap_err().to_string();
-    assert!(err.contains(&format!("shaders/lib/primitive.wgsl:{line}")), "{err}");
-    std::fs::write(&primitive, "// generated: intersect_disk\n").unwrap();
-    let err = ShaderSource::Dir(dir.path().into()).compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap_err().to_string();
+    std::fs::copy(ShaderSource::source_dir().join("lib/sphere.wgsl"), dir.path().join("lib/sphere.wgsl")).unwrap();
+    std::fs::write(dir.path().join("lib/primitive.wgsl"), "// generated: intersect_disk\n").unwrap();
+    let err = compose().unwrap_err().to_string();
     assert!(err.contains("shaders/lib/primitive.wgsl:1: no generated piece intersect_disk"), "{err}");
 }
 
