@@ -4,7 +4,6 @@
 //! run, however many students there are; a student's missing, unreadable or
 //! wrongly sized image is that case's verdict, and the run goes on.
 
-use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use glint_gpu::{Format, Image, Renderer};
@@ -127,16 +126,22 @@ struct Prepared {
 }
 
 enum ReferenceImage {
-    Rendered(Image),
+    /// A render as it reads back from a PNG, and from a float file, made once
+    /// for every student.
+    Rendered { png: LinearImage, float: LinearImage },
     Read(LinearImage),
 }
 
 impl ReferenceImage {
+    fn rendered(image: &Image) -> ReferenceImage {
+        ReferenceImage::Rendered { png: LinearImage::from_render(image, Format::Png), float: LinearImage::from_render(image, Format::Exr) }
+    }
+
     /// A render is compared as it reads back in the submission's format.
-    fn linear(&self, format: Format) -> Cow<'_, LinearImage> {
+    fn linear(&self, format: Format) -> &LinearImage {
         match self {
-            ReferenceImage::Rendered(image) => Cow::Owned(LinearImage::from_render(image, format)),
-            ReferenceImage::Read(image) => Cow::Borrowed(image),
+            ReferenceImage::Rendered { png, float } => if format == Format::Png { png } else { float },
+            ReferenceImage::Read(image) => image,
         }
     }
 }
@@ -182,7 +187,7 @@ fn prepare(case: &GradedCase, renderer: Option<&Renderer>) -> Prepared {
                 .ok_or_else(|| "no renderer".to_string())
                 .and_then(|renderer| render(renderer, scene, &case.render));
             let (image, settings) = match rendered {
-                Ok(Rendered { image, settings }) => (Ok(ReferenceImage::Rendered(image)), Some(settings)),
+                Ok(Rendered { image, settings }) => (Ok(ReferenceImage::rendered(&image)), Some(settings)),
                 Err(e) => (Err(e), None),
             };
             Prepared { image, settings, file: ("reference scene", scene.clone()) }
@@ -227,7 +232,7 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_i
         }
     };
     let format = image_io::format_of(&image).expect("a read image has a known format");
-    let comparison = compare(&reference.linear(format), &submitted, &case.criteria, ROLES, report_images);
+    let comparison = compare(reference.linear(format), &submitted, &case.criteria, ROLES, report_images);
     outcome.status = if comparison.passed() { Status::Passed } else { Status::Mismatch };
     outcome.points = Some(Points { earned: case.scoring.earned(comparison.verdict.as_ref()), possible: case.scoring.points });
     outcome.detail = comparison.detail;
