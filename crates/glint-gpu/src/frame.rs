@@ -1,8 +1,9 @@
 //! The host pipeline from a loaded scene to uploaded buffers:
 //! cut large polygons → validate → build BVH → pack → upload. Shared by the CLI, the viewer and the tests.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use web_time::Instant;
 use glam::Vec3;
 use glint_scene::bvh::Bvh;
 use glint_scene::eye_tiles::Footprints;

@@ -10,6 +10,7 @@ use bytemuck::Zeroable;
 use glint_scene::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParams, SceneUniforms, View};
 use glint_scene::specialization::Specialization;
 
+use crate::error_scope::ErrorScope;
 use crate::pipelines::create_pipeline;
 use crate::renderer::STAT_BYTES;
 use crate::shaders::{Kernel, ShaderSource};
@@ -249,7 +250,7 @@ impl Renderer {
         let slot = (u64::from(y) * u64::from(scene.width) + u64::from(x)) * PIXEL_BYTES;
         let region =
             DispatchParams { origin: [x, y], end: [x + 1, y + 1], sample_count: 1, tile_width: scene.width, ..Zeroable::zeroed() };
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let scope = ErrorScope::push(&self.device);
         let saved = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("pick saved pixel"),
             size: PIXEL_BYTES,
@@ -264,7 +265,7 @@ impl Renderer {
         encoder.copy_buffer_to_buffer(&saved, 0, &scene.accum, slot, PIXEL_BYTES);
         self.queue.submit([encoder.finish()]);
         let bytes = self.read(&readback);
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        if let Some(e) = scope.pop() {
             return Err(GpuError::Runtime(e.to_string()));
         }
         let pixel: [f32; 4] = bytemuck::pod_read_unaligned(&bytes?);

@@ -7,6 +7,7 @@
 //! pipeline's types are used from the crate root.
 
 mod device;
+mod error_scope;
 pub mod display;
 mod eye_tiles;
 mod frame;
@@ -18,6 +19,7 @@ mod pipelines;
 pub mod primitive_dispatch;
 pub mod probe;
 mod profile;
+mod readback;
 mod renderer;
 mod scene_textures;
 pub mod schedule;
@@ -40,6 +42,7 @@ pub use output::{
     OutputPathError, PngBits,
 };
 pub use glint_scene::RayStats;
+pub use readback::Readback;
 pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
 pub use sink::{ImageSink, StagedImage};
 pub use tiles::Region;

@@ -11,6 +11,7 @@ use std::sync::Mutex;
 
 use glint_scene::specialization::Specialization;
 
+use crate::error_scope::ErrorScope;
 use crate::renderer::one_line;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tuning::Tuning;
@@ -102,13 +103,20 @@ pub(crate) fn create_pipeline(
 ) -> Result<wgpu::ComputePipeline, GpuError> {
     let entry = kernel.entry_point();
     // Parsed and validated here, with errors that name file and line; wgpu
-    // takes the IR as it is rather than parsing the WGSL again.
-    let ir = source.compose(kernel, specialization, tuning)?.validate()?;
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let descriptor = wgpu::ShaderModuleDescriptor {
-        label: Some(entry),
-        source: wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(ir)),
+    // takes the IR as it is rather than parsing the WGSL again. A browser
+    // compiles WGSL text itself: it gets the text tests/webgpu.rs compiles
+    // in Chromium.
+    let composed = source.compose(kernel, specialization, tuning)?;
+    let ir = composed.validate()?;
+    #[cfg(not(target_arch = "wasm32"))]
+    let shader = wgpu::ShaderSource::Naga(std::borrow::Cow::Owned(ir));
+    #[cfg(target_arch = "wasm32")]
+    let shader = {
+        drop(ir);
+        wgpu::ShaderSource::Wgsl(std::borrow::Cow::Owned(composed.source))
     };
+    let scope = ErrorScope::push(device);
+    let descriptor = wgpu::ShaderModuleDescriptor { label: Some(entry), source: shader };
     let module = match source {
         // SAFETY: the embedded kernels are Glint's own. Every loop in them ends:
         // BVH traversal pushes at most one node per level of a tree whose depth
@@ -131,7 +139,7 @@ pub(crate) fn create_pipeline(
         compilation_options: Default::default(),
         cache: None,
     });
-    if let Some(e) = pollster::block_on(scope.pop()) {
+    if let Some(e) = scope.pop() {
         return Err(GpuError::Shader(format!("{entry}: {}", one_line(&e))));
     }
     Ok(pipeline)

@@ -10,9 +10,10 @@ use glint_scene::gpu_types::{
 use glint_scene::specialization::Specialization;
 use glint_scene::{Scene, Shape};
 
+use crate::error_scope::ErrorScope;
 use crate::pipelines::create_pipeline;
 use crate::shaders::{Kernel, ShaderSource};
-use crate::{GpuError, RenderOptions, Renderer, SceneBuffers};
+use crate::{GpuError, Readback, RenderOptions, Renderer, SceneBuffers};
 
 /// A pixel's ray tree: the rays in the order the kernel traced them (a ray's
 /// parent always comes before it) and the colour the tree adds up to.
@@ -86,6 +87,17 @@ impl Prober {
     /// render with `options` traces it: through the pixel centre, or with
     /// `spp` > 1 through its first sample's position.
     pub fn probe(&self, renderer: &Renderer, scene: &SceneBuffers, x: u32, y: u32, options: &RenderOptions) -> Result<RayTree, GpuError> {
+        let scope = ErrorScope::push(&renderer.device);
+        let tree = self.probe_later(renderer, scene, x, y, options).and_then(|tree| tree.wait(&renderer.device));
+        if let Some(e) = scope.pop() {
+            return Err(GpuError::Runtime(e.to_string()));
+        }
+        tree
+    }
+
+    /// [`Prober::probe`] without waiting: the tree arrives in the read-back
+    /// (how a browser probes).
+    pub fn probe_later(&self, renderer: &Renderer, scene: &SceneBuffers, x: u32, y: u32, options: &RenderOptions) -> Result<Readback<RayTree>, GpuError> {
         if x >= scene.width || y >= scene.height {
             return Err(GpuError::Output(format!(
                 "pixel ({x}, {y}) is outside the {} x {} image",
@@ -115,7 +127,6 @@ impl Prober {
         };
         renderer.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let readback = renderer.readback_buffer(PROBE_BYTES);
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
@@ -126,16 +137,13 @@ impl Prober {
         }
         encoder.copy_buffer_to_buffer(&buffer, 0, &readback, 0, PROBE_BYTES);
         renderer.queue.submit([encoder.finish()]);
-        let bytes = renderer.read(&readback);
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Runtime(e.to_string()));
-        }
-        let bytes = bytes?;
-        let (head, rest) = bytes.split_at(size_of::<ProbeHeader>());
-        let header: ProbeHeader = bytemuck::pod_read_unaligned(head);
-        let count = header.count.min(PROBE_CAPACITY) as usize;
-        let rays = rest.chunks_exact(size_of::<ProbeRay>()).take(count).map(bytemuck::pod_read_unaligned).collect();
-        Ok(RayTree { color: header.color, rays, truncated: header.truncated != 0 })
+        Ok(Readback::start(readback, |bytes| {
+            let (head, rest) = bytes.split_at(size_of::<ProbeHeader>());
+            let header: ProbeHeader = bytemuck::pod_read_unaligned(head);
+            let count = header.count.min(PROBE_CAPACITY) as usize;
+            let rays = rest.chunks_exact(size_of::<ProbeRay>()).take(count).map(bytemuck::pod_read_unaligned).collect();
+            Ok(RayTree { color: header.color, rays, truncated: header.truncated != 0 })
+        }))
     }
 }
 

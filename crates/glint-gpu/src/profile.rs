@@ -64,7 +64,8 @@ pub struct DeviceProfile {
     /// SIMD groups of 4 or 8 lanes, with the scene in storage buffers.
     pub eye_tiles: bool,
     /// Whether the host resolves read-backs instead of the resolve kernel: on
-    /// a CPU adapter its compile costs more than the host's pass over a tile.
+    /// a CPU adapter its compile costs more than the host's pass over a tile
+    /// (outside a browser).
     pub resolves_on_host: bool,
     /// Whether dispatches deal their places in spread order (`Tuning::spread`):
     /// lavapipe hands each thread a run of workgroups and runs SIMD groups of
@@ -94,7 +95,9 @@ impl DeviceProfile {
             packet_eye_rays: if kernels.is_some() { PACKET_EYE_RAYS } else { 0 },
             uniform_tree: kernels.is_some(),
             eye_tiles,
-            resolves_on_host: info.device_type == wgpu::DeviceType::Cpu,
+            // A browser's page may not wait for a read-back, and its resolve
+            // kernel compiles in the GPU process, off the page's thread.
+            resolves_on_host: info.device_type == wgpu::DeviceType::Cpu && info.backend != wgpu::Backend::BrowserWebGpu,
             spread: kernels.is_some() || eye_tiles,
         }
     }
@@ -222,6 +225,21 @@ mod tests {
         assert!(profile.eye_tiles && profile.packets && profile.packets_for(1) && profile.spread, "{profile:?}");
         assert!(!profile.uniform_tree && profile.scene_arrays == SceneArrays::Buffers);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
+    }
+
+    #[test]
+    fn a_browser_gets_the_plain_choices_and_resolves_on_the_device() {
+        // Chromium on SwiftShader: a fallback adapter, which wgpu calls a CPU.
+        let mut swiftshader = adapter("SwiftShader Device (Subzero)", wgpu::DeviceType::Cpu, 4);
+        swiftshader.backend = wgpu::Backend::BrowserWebGpu;
+        let plain = DeviceProfile::of(&adapter("a GPU", wgpu::DeviceType::DiscreteGpu, 32), wgpu::Features::SUBGROUP, false);
+        for features in [wgpu::Features::empty(), wgpu::Features::SUBGROUP] {
+            let profile = DeviceProfile::of(&swiftshader, features, true);
+            assert_eq!(DeviceProfile { eye_tiles: false, packets: false, spread: false, ..profile }, plain, "{features:?}");
+            assert!(!profile.resolves_on_host && profile.describe() == "plain profile");
+        }
+        assert!(!DeviceProfile::of(&swiftshader, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
+        assert!(DeviceProfile::of(&swiftshader, wgpu::Features::SUBGROUP, false).eye_tiles, "4-lane groups fit eye tiles");
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use bytemuck::Zeroable;
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
+use web_time::Instant;
 
 use glint_scene::gpu_types::{
     DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
@@ -12,6 +12,7 @@ use glint_scene::specialization::Specialization;
 use glint_scene::RayStats;
 use wgpu::util::DeviceExt;
 
+use crate::error_scope::ErrorScope;
 use crate::eye_tiles::{self, EyeTileBinding};
 use crate::pipelines::Pipelines;
 use crate::schedule::{BandScheduler, BATCH_TARGET};
@@ -20,7 +21,7 @@ use crate::profile::DeviceProfile;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tuning::Tuning;
 use crate::tiles::Region;
-use crate::{display, GpuError, Image};
+use crate::{display, GpuError, Image, Readback};
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -377,7 +378,7 @@ impl Renderer {
         if !self.profile.resolves_on_host {
             self.pipelines.get(Kernel::Resolve, Specialization::ALL, Tuning::PLAIN)?;
         }
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let scope = ErrorScope::push(&self.device);
         let result = (|| {
             let mut stats = RayStats::default();
             let total = u64::from(options.spp) * region.pixels();
@@ -389,7 +390,7 @@ impl Renderer {
             }
             Ok(stats)
         })();
-        let scoped = pollster::block_on(scope.pop());
+        let scoped = scope.pop();
         if let Some(reason) = self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone() {
             return Err(GpuError::Runtime(format!("the GPU device was lost ({reason})")));
         }
@@ -531,6 +532,20 @@ impl Renderer {
         self.resolve_buffer(&scene.accum, scene.width, scene.height, options)
     }
 
+    /// [`Renderer::resolve`] without waiting (how a browser saves an image):
+    /// the samples are read back and resolved by the host twin of the resolve
+    /// kernel, `display::resolve`.
+    pub fn resolve_later(&self, scene: &SceneBuffers, options: &RenderOptions) -> Result<Readback<Image>, GpuError> {
+        scene.check_whole_image()?;
+        let (width, height, options) = (scene.width, scene.height, *options);
+        let bytes = u64::from(width * height) * PIXEL_BYTES;
+        let readback = self.readback_buffer(bytes);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&scene.accum, 0, &readback, 0, bytes);
+        self.queue.submit([encoder.finish()]);
+        Ok(Readback::start(readback, move |bytes| Ok(display::resolve(&bytemuck::pod_collect_to_vec(bytes), width, height, &options))))
+    }
+
     /// Resolves `samples` (rgb sums and sample counts) with the resolve kernel,
     /// whatever the adapter: what the CPU twin in `display.rs` is tested against.
     pub fn resolve_samples(&self, samples: &[[f32; 4]], width: u32, height: u32, options: &RenderOptions) -> Result<Image, GpuError> {
@@ -637,19 +652,7 @@ impl Renderer {
 
     /// Waits for the queue and copies a mappable buffer's bytes out.
     pub(crate) fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
-        let (tx, rx) = std::sync::mpsc::channel();
-        buffer.map_async(wgpu::MapMode::Read, .., move |r| {
-            let _ = tx.send(r);
-        });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Runtime(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Runtime(e.to_string()))?
-            .map_err(|e| GpuError::Runtime(e.to_string()))?;
-        let bytes = buffer.get_mapped_range(..).map_err(|e| GpuError::Runtime(e.to_string()))?.to_vec();
-        buffer.unmap();
-        Ok(bytes)
+        Readback::start(buffer.clone(), |bytes| Ok(bytes.to_vec())).wait(&self.device)
     }
 }
 
