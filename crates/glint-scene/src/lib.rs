@@ -15,6 +15,7 @@ mod light;
 mod material;
 pub mod nff;
 pub mod observer;
+pub mod opened_files;
 pub mod obj;
 pub mod polygon_split;
 pub mod primitive_kinds;
@@ -59,7 +60,7 @@ pub(crate) enum ReadError {
 /// UTF-8 (a binary file, a file in another encoding) are a malformed file, and
 /// the error names the line and column where the text stops being UTF-8.
 pub(crate) fn read_text(path: &Path) -> Result<String, ReadError> {
-    let bytes = std::fs::read(path).map_err(ReadError::Io)?;
+    let bytes = opened_files::read(path).map_err(ReadError::Io)?;
     String::from_utf8(bytes).map_err(|e| {
         let valid = e.utf8_error().valid_up_to();
         let bytes = e.as_bytes();
