@@ -378,6 +378,10 @@ impl eframe::App for ViewerApp {
         self.image.render(&ctx, doc, &self.settings, &mut self.errors.gpu);
         // After the render, which writes edits into the canvas the probe reads.
         self.inspector.update(&self.image, doc, &self.jobs, &mut self.errors.gpu);
+        if self.inspector.is_probing() {
+            // In a browser the tree arrives without waking the UI.
+            ctx.request_repaint();
+        }
         self.watch_first_image(&ctx);
     }
 }

@@ -181,13 +181,17 @@ impl LoadedScene {
 
     /// Writes the scene as edited, with `specular` applied to its materials, to `path` as TOML.
     pub fn save(&self, path: &Path, specular: SpecularChoice) -> Result<(), String> {
+        self.toml(specular)
+            .and_then(|text| glint_gpu::write_atomically(path, text.as_bytes()).map_err(|e| one_line(format!("{}: {e}", path.display()))))
+    }
+
+    /// The scene as edited, with `specular` applied to its materials, as TOML.
+    pub fn toml(&self, specular: SpecularChoice) -> Result<String, String> {
         let mut scene = self.scene.clone();
         for m in &mut scene.materials {
             *m = specular.apply(m);
         }
-        glint_scene::toml_write::to_string(&scene)
-            .map_err(one_line)
-            .and_then(|text| glint_gpu::write_atomically(path, text.as_bytes()).map_err(|e| one_line(format!("{}: {e}", path.display()))))
+        glint_scene::toml_write::to_string(&scene).map_err(one_line)
     }
 
     /// The parts of the scene the side panel edits, to notice a change.

@@ -8,8 +8,9 @@
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use web_time::Instant;
 use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::ShaderSource;

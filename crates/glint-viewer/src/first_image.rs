@@ -5,8 +5,9 @@
 //! a new user waits for (docs/performance.md).
 
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use web_time::Instant;
 /// What the first image came to.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum FirstImage {

@@ -5,12 +5,13 @@
 
 use std::path::Path;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use web_time::Instant;
 use egui::{Pos2, Rect, Vec2};
 use glam::Vec3;
 use glint_gpu::schedule::BandScheduler;
-use glint_gpu::{GpuError, PngBits};
+use glint_gpu::{GpuError, PngBits, Readback};
 use glint_scene::gpu_types::{self, View};
 use glint_scene::Camera;
 
@@ -278,6 +279,14 @@ impl TracedImage {
                 .renderer()
                 .resolve(&canvas.prepared.buffers, &settings.present_options(canvas))
                 .and_then(|image| glint_gpu::write_image(&image, path, PngBits::Eight).map(|()| image)),
+            _ => Err(GpuError::Output("there is no image to save yet".into())),
+        }
+    }
+
+    /// [`TracedImage::save_png`]'s image, read back when the device has it.
+    pub fn image_later(&self, doc: Option<&LoadedScene>, settings: &Settings) -> Result<Readback<glint_gpu::Image>, GpuError> {
+        match &self.canvas {
+            Some(canvas) if self.canvas_is_current(doc) => canvas.renderer().resolve_later(&canvas.prepared.buffers, &settings.present_options(canvas)),
             _ => Err(GpuError::Output("there is no image to save yet".into())),
         }
     }

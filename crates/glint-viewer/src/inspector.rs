@@ -6,17 +6,19 @@
 //! pixel (or its row or column) and the camera that traced them.
 //!
 //! The probe kernel is as large as the trace kernel, so it is compiled in the
-//! background the first time inspect mode is used, not at start-up.
+//! background the first time inspect mode is used, not at start-up. A probe's
+//! tree is read back at once natively, and in a later frame in a browser,
+//! whose page may not wait for the device.
 
 use std::sync::Arc;
 
 use egui::{CollapsingHeader, Color32, Pos2, Stroke, Ui};
 use glint_gpu::probe::{Prober, RayTree, TreeText};
-use glint_gpu::{GpuError, RenderOptions};
+use glint_gpu::{GpuError, Readback, RenderOptions};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::gpu_types::{ProbeRay, NO_RAY, PROBE_BLOCKED, PROBE_SHADOW_TRACED, RAY_EYE, RAY_SHADOW};
 use glint_scene::observer::{Observer, Overlay, OverlayOptions, ProbedPixel, RayId, GRID_CELL_PIXELS};
-use glint_scene::MAX_DEPTH_LIMIT;
+use glint_scene::{Camera, MAX_DEPTH_LIMIT};
 
 use crate::app::one_line;
 use crate::document::LoadedScene;
@@ -48,6 +50,15 @@ pub(crate) struct Inspector {
     pub spread: Spread,
     /// The deepest rays drawn.
     pub max_depth: u32,
+    /// Probes on their way back from the device.
+    probing: Option<Probing>,
+}
+
+/// Probes asked of the device, with their pixels, and the camera and frame
+/// of the observer mode they begin, if they do.
+struct Probing {
+    probes: Vec<((u32, u32), Readback<RayTree>)>,
+    observer: Option<(Camera, CameraFrame)>,
 }
 
 impl Default for Inspector {
@@ -64,6 +75,7 @@ impl Default for Inspector {
             observed: None,
             spread: Spread::default(),
             max_depth: MAX_DEPTH_LIMIT,
+            probing: None,
         }
     }
 }
@@ -94,6 +106,7 @@ impl Inspector {
             self.tree = None;
             self.probed = None;
             self.hovered = None;
+            self.probing = None;
         }
     }
 
@@ -108,7 +121,8 @@ impl Inspector {
     /// needs it, and probes the pinned pixel when the canvas's scene or the
     /// pixel changed since the last probe; a failed probe goes to `error`.
     pub fn update(&mut self, image: &TracedImage, doc: Option<&LoadedScene>, jobs: &Jobs<Job>, error: &mut Option<String>) {
-        if !self.enabled {
+        self.collect(error);
+        if !self.enabled || self.probing.is_some() {
             return;
         }
         let Some(canvas) = image.synced_canvas(doc) else { return };
@@ -131,30 +145,54 @@ impl Inspector {
         let (Some(pixel), Some((_, Ok(prober))), Some(size)) = (self.pixel(image), &self.prober, image.render_size()) else { return };
         // Through the pixel centre, as a one-sample render traces it.
         let options = RenderOptions { spp: 1, ..RenderOptions::default() };
-        let probe = |(x, y): (u32, u32)| prober.probe(canvas.renderer(), &canvas.prepared.buffers, x, y, &options);
-        if self.observe {
+        let probe = |pixels: Vec<(u32, u32)>| -> Result<Vec<_>, GpuError> {
+            let renderer = canvas.renderer();
+            let probes = pixels.into_iter().map(|(x, y)| prober.probe_later(renderer, &canvas.prepared.buffers, x, y, &options).map(|tree| ((x, y), tree)));
+            let probes = probes.collect();
+            // Natively the trees are read back in this frame.
+            #[cfg(not(target_arch = "wasm32"))]
+            renderer.device().poll(wgpu::PollType::wait_indefinitely()).map_err(|e| GpuError::Runtime(e.to_string()))?;
+            probes
+        };
+        let (pixels, observer) = if self.observe {
             // The canvas is still the camera's own: probe every pixel followed now.
+            self.observe = false;
             let Some(camera) = doc.map(|d| d.scene.camera) else { return };
             let Some(frame) = CameraFrame::new(&camera, size.0, size.1) else { return };
-            match self.spread.pixels(pixel, size).into_iter().map(|p| probe(p).map(|tree| (p, tree))).collect::<Result<Vec<_>, _>>() {
-                Ok(trees) => {
-                    self.tree = Some(trees[0].1.clone());
-                    self.observed = Some(Observed { camera, frame, trees });
-                }
-                Err(e) => *error = Some(one_line(e)),
+            (self.spread.pixels(pixel, size), Some((camera, frame)))
+        } else {
+            let key = (image.syncs, pixel);
+            if self.probed == Some(key) {
+                return;
             }
-            self.observe = false;
-            return;
-        }
-        let key = (image.syncs, pixel);
-        if self.probed == Some(key) {
-            return;
-        }
-        self.probed = Some(key);
-        match probe(pixel) {
-            Ok(tree) => self.tree = Some(tree),
+            self.probed = Some(key);
+            (vec![pixel], None)
+        };
+        match probe(pixels) {
+            Ok(probes) => self.probing = Some(Probing { probes, observer }),
             Err(e) => *error = Some(one_line(e)),
         }
+        self.collect(error);
+    }
+
+    /// Takes the probes' trees once all have arrived.
+    fn collect(&mut self, error: &mut Option<String>) {
+        let Some(probing) = self.probing.take_if(|p| p.probes.iter().all(|(_, tree)| tree.is_ready())) else { return };
+        let trees: Result<Vec<_>, GpuError> =
+            probing.probes.into_iter().map(|(pixel, tree)| tree.take().expect("ready").map(|tree| (pixel, tree))).collect();
+        match (trees, probing.observer) {
+            (Ok(trees), Some((camera, frame))) => {
+                self.tree = Some(trees[0].1.clone());
+                self.observed = Some(Observed { camera, frame, trees });
+            }
+            (Ok(mut trees), None) => self.tree = trees.pop().map(|(_, tree)| tree),
+            (Err(e), _) => *error = Some(one_line(e)),
+        }
+    }
+
+    /// Whether a probe's tree is still on its way (in a browser).
+    pub fn is_probing(&self) -> bool {
+        self.probing.is_some()
     }
 
     /// Asks for observer mode, which begins once the pinned pixel's canvas is
@@ -235,7 +273,7 @@ impl Inspector {
                 return;
             };
             let text = TreeText { scene: &doc.scene, tree, first_number: 1 };
-            ui.label(format!("pixel ({x}, {y}), through its centre: colour {}", glint_gpu::probe::vec3_text(tree.color)));
+            ui.label(pixel_line(tree, (x, y)));
             ui.small("The contributions of all rays add up to the pixel's linear colour.");
             let mut hovered = None;
             if !tree.rays.is_empty() {
@@ -271,6 +309,17 @@ and the rays in 3-D: orbit, pan and zoom around them. Leaving it returns to the 
 }
 
 /// Ray `id`'s node: its header, its numbers, then the rays it cast.
+/// The pinned pixel's tree as the side panel heads it: the pixel, then one
+/// line per ray in the order traced.
+pub(crate) fn tree_lines(scene: &glint_scene::Scene, tree: &RayTree, pixel: (u32, u32)) -> Vec<String> {
+    let text = TreeText { scene, tree, first_number: 1 };
+    std::iter::once(pixel_line(tree, pixel)).chain(tree.rays.iter().enumerate().map(|(id, ray)| headline(&text, id, ray))).collect()
+}
+
+fn pixel_line(tree: &RayTree, (x, y): (u32, u32)) -> String {
+    format!("pixel ({x}, {y}), through its centre: colour {}", glint_gpu::probe::vec3_text(tree.color))
+}
+
 fn node(ui: &mut Ui, text: &TreeText<'_>, id: usize, hovered: &mut Option<usize>) {
     let ray = &text.tree.rays[id];
     let response = CollapsingHeader::new(headline(text, id, ray)).id_salt(("ray", id)).default_open(ray.kind == RAY_EYE).show(ui, |ui| {

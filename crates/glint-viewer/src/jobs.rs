@@ -1,6 +1,7 @@
 //! Work that takes longer than a frame (compiling kernels, loading a scene,
 //! building and uploading it) runs on its own thread; its result comes back
-//! through a channel and wakes the UI.
+//! through a channel and wakes the UI. A browser page has one thread: there
+//! the job runs at once, and its result comes back the same way.
 
 use std::path::PathBuf;
 use std::sync::mpsc::{channel, Receiver, Sender};
@@ -35,6 +36,14 @@ impl<T: Send + 'static> Jobs<T> {
     }
 
     /// Runs `job` on a new thread; its result arrives in `finished`.
+    #[cfg(target_arch = "wasm32")]
+    pub fn spawn(&self, _name: &str, job: impl FnOnce() -> T + Send + 'static) {
+        let _ = self.tx.send(job());
+        self.ctx.request_repaint();
+    }
+
+    /// Runs `job` on a new thread; its result arrives in `finished`.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn spawn(&self, name: &str, job: impl FnOnce() -> T + Send + 'static) {
         let (tx, ctx) = (self.tx.clone(), self.ctx.clone());
         std::thread::Builder::new()

@@ -16,6 +16,7 @@ mod camera_control;
 mod document;
 mod engine;
 mod first_image;
+mod host;
 mod image;
 mod inspector;
 mod jobs;
@@ -29,6 +30,7 @@ mod warm_up;
 mod watch;
 
 use std::path::PathBuf;
+#[cfg(not(target_arch = "wasm32"))]
 use std::sync::Arc;
 
 pub use app::{StartError, ViewerApp, ViewerOptions};
@@ -65,6 +67,7 @@ impl std::fmt::Display for RunError {
 impl std::error::Error for RunError {}
 
 /// Opens the viewer window on `scene` and returns when it is closed.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(scene: Option<PathBuf>) -> Result<(), StartError> {
     run_scene(scene.map_or(Scene::None, Scene::File), None).map_err(|e| match e {
         RunError::NoDisplay(m) => StartError(m),
@@ -74,6 +77,7 @@ pub fn run(scene: Option<PathBuf>) -> Result<(), StartError> {
 
 /// [`run`], telling a missing display apart from other failures; with
 /// `first_image`, the window closes once the first image (or a problem) is shown.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run_scene(scene: Scene, first_image: Option<FirstImageWatch>) -> Result<(), RunError> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -104,6 +108,7 @@ or under `xvfb-run glint view`",
 }
 
 /// `message` without the "at /path/to/file.rs:123" that some errors carry.
+#[cfg(not(target_arch = "wasm32"))]
 fn without_source_paths(message: &str) -> String {
     let words: Vec<&str> = message.split_whitespace().collect();
     let mut kept = Vec::new();
@@ -124,7 +129,7 @@ fn without_source_paths(message: &str) -> String {
     kept.join(" ")
 }
 
-#[cfg(test)]
+#[cfg(all(test, not(target_arch = "wasm32")))]
 mod tests {
     #[test]
     fn source_paths_are_left_out_of_messages() {
@@ -138,6 +143,7 @@ neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set.";
 /// chooses one (a real GPU first, `GLINT_ADAPTER` pins one by name; only
 /// adapters with compute shaders qualify), with the adapter's own limits rather
 /// than wgpu's conservative defaults.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor.backends = glint_gpu::backends();
@@ -150,6 +156,7 @@ pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     egui_wgpu::WgpuSetup::CreateNew(setup)
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn choose_adapter(adapters: &[wgpu::Adapter], surface: Option<&wgpu::Surface<'_>>) -> Result<wgpu::Adapter, String> {
     let mut usable: Vec<&wgpu::Adapter> = adapters
         .iter()

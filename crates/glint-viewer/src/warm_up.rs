@@ -47,6 +47,10 @@ impl WarmUp {
         let (Some(kernels), Some(scene)) = (&parts.kernels, &parts.scene) else { return };
         let (kernels, scene) = (Arc::clone(kernels), scene.clone());
         *parts = Parts::default();
+        // A browser page has no second thread to compile on.
+        if cfg!(target_arch = "wasm32") {
+            return;
+        }
         let view = self.view;
         std::thread::Builder::new()
             .name("glint warm-up".into())

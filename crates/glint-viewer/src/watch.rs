@@ -3,8 +3,9 @@
 //! platform watcher.
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant, SystemTime};
+use std::time::{Duration, SystemTime};
 
+use web_time::Instant;
 /// How often the files are looked at.
 const INTERVAL: Duration = Duration::from_millis(400);
 
