@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Builds Glint's page into a static folder (target/web/ by default, or $1):
+# the viewer compiled to WebAssembly, bound by wasm-bindgen, and index.html.
+# Any static web server (or GitHub Pages) can host the folder.
+# Installs the wasm32 target and wasm-bindgen-cli when missing.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+out="${1:-$root/target/web}"
+cd "$root"
+
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+    rustup target add wasm32-unknown-unknown
+fi
+# wasm-bindgen-cli must be the version of the wasm-bindgen crate the build links.
+version="$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)"
+if [ "$(wasm-bindgen --version 2>/dev/null | cut -d' ' -f2)" != "$version" ]; then
+    cargo install wasm-bindgen-cli --version "$version" --locked \
+        || cargo install wasm-bindgen-cli --version "$version"  # a registry mirror without one of its locked versions
+fi
+
+cargo build --release --target wasm32-unknown-unknown -p glint-web
+mkdir -p "$out"
+wasm-bindgen --target web --no-typescript --out-dir "$out" target/wasm32-unknown-unknown/release/glint_web.wasm
+cp web/index.html "$out/index.html"
+echo "built $out"
