@@ -14,11 +14,15 @@ pub fn provide(path: impl Into<PathBuf>, bytes: impl Into<Arc<[u8]>>) {
     FILES.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert_default().insert(path.into(), bytes.into());
 }
 
-/// The bytes of the file at `path`: those handed over, else the file on disk.
+/// The bytes of the file at `path`: those handed over, else the file on disk
+/// (a browser page has none).
 pub(crate) fn read(path: &Path) -> std::io::Result<Vec<u8>> {
     let provided = FILES.lock().unwrap_or_else(|e| e.into_inner()).as_ref().and_then(|files| files.get(path).cloned());
     match provided {
         Some(bytes) => Ok(bytes.to_vec()),
+        #[cfg(target_arch = "wasm32")]
+        None => Err(std::io::Error::new(std::io::ErrorKind::NotFound, "not among the files opened; open it together with the scene")),
+        #[cfg(not(target_arch = "wasm32"))]
         None => std::fs::read(path),
     }
 }
