@@ -8,16 +8,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 out="${1:-$root/target/web}"
 cd "$root"
 
-if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
-    rustup target add wasm32-unknown-unknown
-fi
-# wasm-bindgen-cli must be the version of the wasm-bindgen crate the build links.
-version="$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)"
-if [ "$(wasm-bindgen --version 2>/dev/null | cut -d' ' -f2)" != "$version" ]; then
-    cargo install wasm-bindgen-cli --version "$version" --locked \
-        || cargo install wasm-bindgen-cli --version "$version"  # a registry mirror without one of its locked versions
-fi
-
+bash web/install-tools.sh
 cargo build --release --target wasm32-unknown-unknown -p glint-web
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" target/wasm32-unknown-unknown/release/glint_web.wasm
