@@ -1,0 +1,39 @@
+// Measures Glint's page in headless Chromium (SwiftShader's WebGPU): for each
+// scene, the first image's time from page load (the kernels' compile
+// included) and the frame time and samples 30 s later, while 16 samples
+// accumulate, as the page's bar shows them. Serve the page first (web/serve.sh), then:
+//   GLINT_PLAYWRIGHT=target/web-test/node/node_modules/playwright-core \
+//     node web/measure.cjs http://127.0.0.1:8080/ showcase.toml whitted1980.toml
+const { chromium } = require(process.env.GLINT_PLAYWRIGHT);
+
+const [url, ...scenes] = process.argv.slice(2);
+
+async function measure(browser, scene) {
+  const page = await browser.newPage({ viewport: { width: 960, height: 600 } });
+  await page.goto(`${url}#scene=${scene}&spp=16`);
+  const deadline = Date.now() + 600_000;
+  let s = {};
+  while (Date.now() < deadline) {
+    s = JSON.parse((await page.textContent("#glint-state")) || "{}");
+    if (s.fatal) throw new Error(s.fatal);
+    if (s.first_image_ms) break;
+    await page.waitForTimeout(500);
+  }
+  await page.waitForTimeout(30_000);
+  s = JSON.parse(await page.textContent("#glint-state"));
+  await page.close();
+  return `${scene}: ${s.render_size?.join("x")}, first image ${(s.first_image_ms / 1000).toFixed(1)} s, ${s.frame_ms?.toFixed(0)} ms/frame, ${s.samples} spp 30 s later`;
+}
+
+(async () => {
+  const browser = await chromium.launch({
+    executablePath: "/usr/bin/chromium",
+    headless: true,
+    args: ["--headless=new", "--no-sandbox", "--enable-unsafe-webgpu", "--disable-gpu-sandbox", "--use-angle=vulkan", "--enable-features=Vulkan"],
+  });
+  for (const scene of scenes) console.log(await measure(browser, scene));
+  await browser.close();
+})().catch((e) => {
+  console.error(e.message);
+  process.exitCode = 1;
+});
