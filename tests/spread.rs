@@ -8,7 +8,7 @@
 mod support;
 
 use glint_gpu::shaders::ShaderSource;
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_types::{
     BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT, SPREAD_STRIPS, View, wgsl_prelude,
 };
 use wgpu::util::DeviceExt;

@@ -12,9 +12,9 @@ use std::time::Duration;
 use glint_gpu::kernel_dump::{self, KernelVariant};
 use glint_gpu::shaders::{Kernel, SceneArrays, ShaderSource};
 use glint_gpu::Tuning;
-use glint_scene::gpu_types::View;
-use glint_scene::primitive_kinds::ALL_KINDS;
-use glint_scene::specialization::Specialization;
+use glint_encoding::gpu_types::View;
+use glint_encoding::primitive_kinds::ALL_KINDS;
+use glint_encoding::specialization::Specialization;
 
 /// What naga may accept for a kernel on a WebGPU device: core WebGPU, plus
 /// subgroup operations for the kernels that need the `subgroups` feature.

@@ -7,12 +7,12 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
 use glint_gpu::Tuning;
-use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_bvh::{GpuGrid, GpuNode};
+use glint_encoding::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
 };
-use glint_scene::primitive_kinds::{ALL_KINDS, KINDS};
-use glint_scene::specialization::Specialization;
+use glint_encoding::primitive_kinds::{ALL_KINDS, KINDS};
+use glint_encoding::specialization::Specialization;
 
 fn module(kernel: Kernel) -> naga::Module {
     ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap()
@@ -328,7 +328,7 @@ fn host_structs_match_wgsl() {
 /// Rust's values; no shader file declares one of them again.
 #[test]
 fn shared_constants_come_from_the_host() {
-    use glint_scene::gpu_types as g;
+    use glint_encoding::gpu_types as g;
     let module = trace_module();
     let value = |name: &str| {
         let (_, c) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).unwrap_or_else(|| panic!("no WGSL constant {name}"));

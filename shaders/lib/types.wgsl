@@ -1,6 +1,6 @@
 // Structs shared by the kernels. Each one the host uploads (Gpu…, the
 // uniforms, the dispatch) has a Rust twin of the same name in
-// crates/glint-scene/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
+// crates/glint-encoding/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
 // that sizes and member offsets agree. Rays are the kernels' own. The constants they use (PRIM_, VIEW_,
 // FLAG_, MISS, LEAF …) come from the generated prelude (gpu_types::wgsl_prelude).
 
@@ -96,7 +96,7 @@ struct GpuPrim {
     count: u32,
 }
 
-// A BVH record (crates/glint-scene/src/gpu_bvh.rs has the details). Interior:
+// A BVH record (crates/glint-encoding/src/gpu_bvh.rs has the details). Interior:
 // bytes 2c and 2c + 1 of quantized[a] are child c's box on axis a in cells of
 // the node's grid, `children` the first child's index with LEAF set when it is a
 // leaf and RIGHT_LEAF when the second is. Leaf: quantized.x is the first

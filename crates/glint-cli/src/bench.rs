@@ -6,9 +6,9 @@ use std::time::{Duration, Instant};
 use clap::{Args, ValueEnum};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer};
-use glint_scene::gpu_types::View;
+use glint_encoding::gpu_types::View;
 use glint_gpu::{DeviceProfile, Tuning};
-use glint_scene::specialization::Specialization;
+use glint_encoding::specialization::Specialization;
 
 use crate::{exit, Failure};
 
@@ -230,8 +230,8 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
 mod tests {
     use glint_gpu::shaders::SceneArrays;
     use glint_gpu::{DeviceProfile, Tuning, PACKET_EYE_RAYS};
-    use glint_scene::gpu_types::View;
-    use glint_scene::specialization::Specialization;
+    use glint_encoding::gpu_types::View;
+    use glint_encoding::specialization::Specialization;
 
     #[test]
     fn each_view_is_timed_with_the_kernel_a_long_render_of_it_alone_compiles() {

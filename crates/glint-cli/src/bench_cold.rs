@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
-use glint_scene::gpu_types::View;
+use glint_encoding::gpu_types::View;
 
 use crate::{exit, Failure};
 

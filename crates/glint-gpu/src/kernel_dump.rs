@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use glint_scene::specialization::Specialization;
+use glint_encoding::specialization::Specialization;
 
 use crate::shaders::{Composed, Kernel, ShaderSource};
 use crate::tuning::Tuning;

@@ -34,12 +34,13 @@ pub use lavapipe::{
 };
 pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
 pub use tuning::Tuning;
+pub use eye_tiles::binning::Footprints;
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
     OutputPathError, PngBits,
 };
-pub use glint_scene::RayStats;
+pub use glint_encoding::RayStats;
 pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
 pub use sink::{ImageSink, StagedImage};
 pub use tiles::Region;

@@ -3,11 +3,11 @@
 //! every ray and every term it adds (shaders/kernels/probe.wgsl).
 
 use bytemuck::Zeroable;
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_types::{
     DispatchParams, ProbeHeader, ProbeRay, View, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_CAPACITY, PROBE_SHADOW_TRACED,
     PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
 };
-use glint_scene::specialization::Specialization;
+use glint_encoding::specialization::Specialization;
 use glint_scene::{Scene, Shape};
 
 use crate::pipelines::create_pipeline;
@@ -181,7 +181,7 @@ impl TreeText<'_> {
     /// The scene's index of the light a shadow ray went to: the kernels see
     /// only the lights that are on, in scene order.
     pub fn scene_light(&self, ray: &ProbeRay) -> Option<usize> {
-        glint_scene::observer::shadow_ray_light(self.scene, ray)
+        glint_encoding::observer::shadow_ray_light(self.scene, ray)
     }
 
     /// "object N (shape, material "name")".

@@ -3,7 +3,7 @@
 //! choices tuned for it; every other device gets the plain ones, the code as
 //! the lecture reads it. Every choice traces the same bits.
 
-use glint_scene::gpu_types::GpuScene;
+use glint_encoding::gpu_types::GpuScene;
 
 use crate::lavapipe;
 use crate::shaders::SceneArrays;

@@ -4,12 +4,12 @@ use bytemuck::Zeroable;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_types::{
     DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
     UNIFORM_ARRAY_BYTES,
 };
-use glint_scene::specialization::Specialization;
-use glint_scene::RayStats;
+use glint_encoding::specialization::Specialization;
+use glint_encoding::RayStats;
 use wgpu::util::DeviceExt;
 
 use crate::eye_tiles::{self, EyeTileBinding};

@@ -4,7 +4,7 @@
 //! shaders/lib/scene_textures.wgsl. lavapipe fetches a texel per lane without the
 //! branch a storage buffer's bounds check costs per lane and component.
 
-use glint_scene::gpu_types::{SCENE_TEXEL_BYTES, SCENE_TEXTURE_WIDTH};
+use glint_encoding::gpu_types::{SCENE_TEXEL_BYTES, SCENE_TEXTURE_WIDTH};
 
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 

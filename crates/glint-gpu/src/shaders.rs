@@ -8,7 +8,7 @@
 //! each once, every file after the files it imports. So a kernel's file list
 //! is derived from the code, and holds only what the kernel uses. A line
 //! `// generated: NAME` becomes the dispatch on primitive kinds generated from
-//! glint-scene's registry (primitive_dispatch.rs), and its file imports every
+//! glint-encoding's registry (primitive_dispatch.rs), and its file imports every
 //! kind's file. Errors are mapped back to the file and line they came from.
 //!
 //! The files are embedded at build time; `ShaderSource::Dir` reads them from
@@ -16,8 +16,8 @@
 
 use std::path::{Path, PathBuf};
 
-use glint_scene::primitive_kinds::KINDS;
-use glint_scene::specialization::Specialization;
+use glint_encoding::primitive_kinds::KINDS;
+use glint_encoding::specialization::Specialization;
 
 use crate::primitive_dispatch;
 use crate::tuning::Tuning;
@@ -119,7 +119,7 @@ impl Kernel {
     /// The invocations of one workgroup across and down (`@workgroup_size`)
     /// of a kernel that traces row bands (trace, primary, diffuse).
     pub fn workgroup_size(self) -> [u32; 2] {
-        use glint_scene::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
+        use glint_encoding::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
         if self == Kernel::Primary {
             [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT]
         } else {
@@ -321,7 +321,7 @@ impl ShaderSource {
     pub fn compose(&self, kernel: Kernel, specialization: Specialization, tuning: Tuning) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
         self.visit(kernel.file(), tuning, &mut Vec::new(), &mut order)?;
-        let mut source = glint_scene::gpu_types::wgsl_prelude();
+        let mut source = glint_encoding::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
         source.push_str(&tuning.wgsl());
         let mut lines = source.lines().count();

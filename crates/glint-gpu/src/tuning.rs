@@ -1,9 +1,9 @@
 //! How a kernel is tuned for the device: the device's half of what a kernel
-//! is compiled for (glint-scene's `Specialization` is the scene's half). The
+//! is compiled for (glint-encoding's `Specialization` is the scene's half). The
 //! device profile chooses it (profile.rs); every tuning traces the same bits
 //! (tests/packet.rs, tests/scene_arrays.rs).
 
-use glint_scene::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
+use glint_encoding::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
 
 use crate::shaders::{Kernel, SceneArrays};
 
@@ -112,7 +112,7 @@ impl std::fmt::Display for Tuning {
 mod tests {
     use super::*;
     use bytemuck::Zeroable;
-    use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
+    use glint_encoding::gpu_bvh::{GpuGrid, GpuNode};
 
     #[test]
     fn a_tree_that_fits_a_uniform_buffer_is_read_from_one() {

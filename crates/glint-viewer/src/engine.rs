@@ -14,7 +14,7 @@ use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
-use glint_scene::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
+use glint_encoding::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
 use glint_scene::Scene;
 
 /// Bands submitted but not finished; more would only queue up latency.
@@ -254,7 +254,7 @@ mod tests {
 
     use glint_gpu::shaders::{Kernel, ShaderSource};
     use glint_gpu::Tuning;
-    use glint_scene::gpu_types::View;
+    use glint_encoding::gpu_types::View;
 
     use super::{Canvas, Kernels};
 

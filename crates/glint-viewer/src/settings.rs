@@ -3,7 +3,7 @@
 //! render options each gives the kernels.
 
 use glint_gpu::{RenderOptions, ToneMap};
-use glint_scene::gpu_types::View;
+use glint_encoding::gpu_types::View;
 use glint_scene::{Material, SpecularModel};
 
 use crate::engine::Canvas;

@@ -10,7 +10,7 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
 use glam::Vec3;
 use glint_gpu::shaders::ShaderSource;
-use glint_scene::gpu_types::{NO_RAY, RAY_EYE, RAY_REFLECT, RAY_SHADOW};
+use glint_encoding::gpu_types::{NO_RAY, RAY_EYE, RAY_REFLECT, RAY_SHADOW};
 use glint_viewer::ViewerApp;
 use image::Rgba;
 use support::{click_with, harness, screen_pos, settle, wait_for, write_scene, RED_SPHERE, SCENE};
