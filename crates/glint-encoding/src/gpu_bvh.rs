@@ -25,7 +25,14 @@ use glam::Vec3;
 use glint_scene::bvh::{Bvh, Node};
 use glint_scene::validate::Invalid;
 
-use crate::gpu_types::{LEAF, RIGHT_LEAF};
+/// In a reference to a BVH record: a leaf. In `GpuNode::children`: the first
+/// child is a leaf. The kernels get it and its siblings through the prelude
+/// (gpu_types.rs).
+pub const LEAF: u32 = 1 << 31;
+/// In `GpuNode::children`: the second child is a leaf.
+pub const RIGHT_LEAF: u32 = 1 << 30;
+/// The end of a traversal.
+pub const NO_NODE: u32 = u32::MAX;
 
 /// The bits of a child reference that index a record. [`LEAF`] marks a
 /// reference to a leaf (on the kernel's stack and in [`GpuBvh::root`]); in an
@@ -181,7 +188,6 @@ mod tests {
     use glint_scene::bvh::MAX_DEPTH;
     use glint_scene::test_rng::Rng;
 
-    use crate::gpu_types::NO_NODE;
     /// A ray that missed both children, as NEEDS_POP in the kernel.
     const NEEDS_POP: u32 = u32::MAX - 1;
 

@@ -7,7 +7,7 @@ use glint_scene::bvh::MAX_DEPTH as BVH_MAX_DEPTH;
 use glint_scene::{plane_axes, polygon_normal};
 use glint_scene::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
-use crate::gpu_bvh::{GpuBvh, GpuGrid, GpuNode};
+use crate::gpu_bvh::{self, GpuBvh, GpuGrid, GpuNode};
 pub use crate::primitive_kinds::{PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
 
 /// Declares the numbers the host and the kernels share. Each becomes a Rust
@@ -140,12 +140,10 @@ shared_constants! {
 
     /// BVH traversal's stack: the builder bounds the tree's depth by it.
     BVH_STACK: u32 = BVH_MAX_DEPTH as u32;
-    /// In a reference to a BVH record: a leaf. In `GpuNode::children`: the first child is a leaf.
-    LEAF: u32 = 1 << 31;
-    /// In `GpuNode::children`: the second child is a leaf.
-    RIGHT_LEAF: u32 = 1 << 30;
-    /// The end of a traversal.
-    NO_NODE: u32 = u32::MAX;
+    /// The flags and the end of a BVH reference (gpu_bvh.rs).
+    LEAF: u32 = gpu_bvh::LEAF;
+    RIGHT_LEAF: u32 = gpu_bvh::RIGHT_LEAF;
+    NO_NODE: u32 = gpu_bvh::NO_NODE;
 
     /// Kinds of rays in a probed ray tree (`ProbeRay::kind`).
     RAY_EYE: u32 = 0;
@@ -667,6 +665,15 @@ pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::primitive_kinds::KINDS;
+
+    #[test]
+    fn the_prelude_declares_every_kinds_code() {
+        let prelude = wgsl_prelude();
+        for k in KINDS {
+            assert_eq!(prelude.matches(&format!("const {}: u32 = {}u;", k.code_name, k.code)).count(), 1, "{}", k.code_name);
+        }
+    }
 
     const SCENE: &str = r#"
 [image]
