@@ -8,8 +8,8 @@
 
 mod support;
 
-use glint_gpu::{Acceleration, RenderOptions};
 use glint_encoding::gpu_types::View;
+use glint_gpu::{Acceleration, RenderOptions};
 use glint_scene::Scene;
 
 /// Width and height odd, so the last column and row of blocks hang over the edge.

@@ -7,9 +7,9 @@
 
 mod support;
 
+use glint_encoding::gpu_types::{View, UNIFORM_TREE_RECORDS};
 use glint_gpu::shaders::{SceneArrays, ShaderSource};
 use glint_gpu::{Acceleration, RenderOptions, Renderer};
-use glint_encoding::gpu_types::{View, UNIFORM_TREE_RECORDS};
 use glint_scene::Scene;
 
 fn renderer(arrays: SceneArrays) -> Renderer {

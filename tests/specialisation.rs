@@ -5,8 +5,8 @@
 
 mod support;
 
-use glint_gpu::{Acceleration, RenderOptions};
 use glint_encoding::gpu_types::View;
+use glint_gpu::{Acceleration, RenderOptions};
 use support::{parse, renderer};
 
 // Small kernels (two kinds) keep the compiles quick; the mirror floor makes

@@ -7,10 +7,9 @@
 
 mod support;
 
+use glint_encoding::gpu_types::{wgsl_prelude, View, SPREAD_STRIPS};
 use glint_gpu::shaders::ShaderSource;
-use glint_encoding::gpu_types::{
-    BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT, SPREAD_STRIPS, View, wgsl_prelude,
-};
+use glint_gpu::WorkgroupSizes;
 use wgpu::util::DeviceExt;
 
 const PLACES_KERNEL: &str = r#"
@@ -149,7 +148,8 @@ fn invocation_places(size: [u32; 2]) -> Vec<u32> {
 
 #[test]
 fn every_four_consecutive_invocations_trace_a_2x2_block() {
-    for size in [[BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT], [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT], [2, 2], [6, 4]] {
+    let profiles = [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE].into_iter().flat_map(|w| [w.band(), w.primary()]);
+    for size in profiles.chain([[2, 2], [6, 4]]) {
         let places = invocation_places(size);
         assert_each_place_once(&places, &format!("a workgroup of {size:?}"));
         for (g, group) in places.chunks(4).enumerate() {

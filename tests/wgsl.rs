@@ -5,14 +5,14 @@ use std::mem::{offset_of, size_of};
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
-use glint_gpu::Tuning;
 use glint_encoding::gpu_bvh::{GpuGrid, GpuNode};
 use glint_encoding::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
 };
 use glint_encoding::primitive_kinds::{ALL_KINDS, KINDS};
 use glint_encoding::specialization::Specialization;
+use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
+use glint_gpu::{Tuning, WorkgroupSizes};
 
 fn module(kernel: Kernel) -> naga::Module {
     ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap()
@@ -38,7 +38,14 @@ fn every_kernel_validates_in_every_tuning() {
 /// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
-    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false, spread: true };
+    let lavapipe = Tuning {
+        arrays: SceneArrays::Buffers,
+        packets: true,
+        uniform_tree: true,
+        eye_tiles: false,
+        spread: true,
+        workgroups: WorkgroupSizes::LAVAPIPE,
+    };
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, ..)| name == "lib/primitive.wgsl");
@@ -71,14 +78,18 @@ fn every_specialisation_validates() {
 }
 
 /// The host dispatches as many workgroups as the kernels' `@workgroup_size`
-/// (times the pixels an invocation traces) needs to cover a band.
+/// (times the pixels an invocation traces) needs to cover a band, in every
+/// profile's workgroup sizes.
 #[test]
 fn workgroup_sizes_are_the_hosts() {
-    for kernel in [Kernel::Trace, Kernel::Primary, Kernel::Diffuse] {
-        let module = module(kernel);
-        let entry = module.entry_points.iter().find(|e| e.name == kernel.entry_point()).unwrap();
-        let [x, y] = kernel.workgroup_size();
-        assert_eq!(entry.workgroup_size, [x, y, 1], "{kernel:?}");
+    for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+        let tuning = Tuning { workgroups, ..Tuning::PLAIN };
+        for kernel in [Kernel::Trace, Kernel::Primary, Kernel::Diffuse] {
+            let module = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().validate().unwrap();
+            let entry = module.entry_points.iter().find(|e| e.name == kernel.entry_point()).unwrap();
+            let [x, y] = tuning.workgroup_size(kernel);
+            assert_eq!(entry.workgroup_size, [x, y, 1], "{kernel:?}, {workgroups:?}");
+        }
     }
 }
 

@@ -6,10 +6,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::Vec3;
-use glint_gpu::{Acceleration, RenderOptions, Renderer};
-use glint_scene::camera_frame::CameraFrame;
 use glint_encoding::gpu_types::ProbeRay;
 use glint_encoding::observer::{Observer, Overlay, OverlayOptions, ProbedPixel, GRID_CELL_PIXELS};
+use glint_gpu::{Acceleration, RenderOptions, Renderer};
+use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, Projection, Scene, MAX_DEPTH_LIMIT};
 
 use crate::paint::paint_overlay;

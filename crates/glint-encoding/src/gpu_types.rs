@@ -99,12 +99,6 @@ shared_constants! {
     /// integer division is one per lane on a software rasteriser).
     STAT_SLOTS: u32 = 1024;
 
-    /// The invocations of a workgroup of the kernels that trace row bands,
-    /// across and down (the primary kernel's are half as tall, since with
-    /// packets each of its invocations traces two rows).
-    BAND_WORKGROUP_WIDTH: u32 = 8;
-    BAND_WORKGROUP_HEIGHT: u32 = 8;
-    PRIMARY_WORKGROUP_HEIGHT: u32 = 4;
     /// The pixels of an eye-ray tile across and down (`eye_tiles`): a SIMD
     /// group of up to eight invocations of the primary kernel, with packets,
     /// traces pixels of one tile (`spread_invocation`).
@@ -163,10 +157,6 @@ shared_constants! {
 
 const _: () = assert!(STAT_SLOTS.is_power_of_two(), "flush_ray_counts takes the slot with a mask");
 const _: () = assert!(SPREAD_STRIPS.is_power_of_two(), "spread_workgroup divides by it with a shift");
-const _: () = assert!(
-    BAND_WORKGROUP_WIDTH % 2 == 0 && BAND_WORKGROUP_HEIGHT % 2 == 0 && PRIMARY_WORKGROUP_HEIGHT % 2 == 0,
-    "spread_invocation deals a workgroup's places in 2x2 blocks"
-);
 const _: () = assert!(SCENE_TEXTURE_WIDTH.is_power_of_two(), "texel_of divides by it with a shift");
 const _: () = assert!(MAX_LIGHTS as usize == UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuLight>(), "the lights fill a uniform buffer");
 const _: () = assert!(MAX_MATERIALS as usize == UNIFORM_ARRAY_BYTES / std::mem::size_of::<GpuMaterial>(), "the materials fill a uniform buffer");

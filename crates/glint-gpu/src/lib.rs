@@ -33,7 +33,7 @@ pub use lavapipe::{
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
 pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
-pub use tuning::Tuning;
+pub use tuning::{Tuning, WorkgroupSizes};
 pub use eye_tiles::binning::Footprints;
 pub use frame::{Acceleration, Prepared};
 pub use output::{

@@ -7,7 +7,7 @@ use glint_encoding::gpu_types::GpuScene;
 
 use crate::lavapipe;
 use crate::shaders::SceneArrays;
-use crate::tuning::{fits_uniform_tree, Tuning};
+use crate::tuning::{fits_uniform_tree, Tuning, WorkgroupSizes};
 
 /// Eye rays from which a one-off render on lavapipe traces packets: fewer
 /// trace sooner one at a time, whose kernel lavapipe compiles faster
@@ -70,6 +70,8 @@ pub struct DeviceProfile {
     /// lavapipe hands each thread a run of workgroups and runs SIMD groups of
     /// consecutive invocations; eye tiles need a SIMD group in one tile.
     pub spread: bool,
+    /// The workgroups of the kernels that trace row bands.
+    pub workgroups: WorkgroupSizes,
 }
 
 impl DeviceProfile {
@@ -96,6 +98,7 @@ impl DeviceProfile {
             eye_tiles,
             resolves_on_host: info.device_type == wgpu::DeviceType::Cpu,
             spread: kernels.is_some() || eye_tiles,
+            workgroups: if kernels.is_some() { WorkgroupSizes::LAVAPIPE } else { WorkgroupSizes::PLAIN },
         }
     }
 
@@ -120,6 +123,7 @@ impl DeviceProfile {
             uniform_tree: self.uniform_tree && fits_uniform_tree(scene),
             eye_tiles: false,
             spread: self.spread,
+            workgroups: self.workgroups,
         }
     }
 
@@ -176,6 +180,7 @@ mod tests {
                 eye_tiles: true,
                 resolves_on_host: true,
                 spread: true,
+                workgroups: WorkgroupSizes::LAVAPIPE,
             };
             assert_eq!(optimised, want);
             let quick = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, true);
@@ -207,6 +212,7 @@ mod tests {
                     eye_tiles: false,
                     resolves_on_host: false,
                     spread: false,
+                    workgroups: WorkgroupSizes::PLAIN,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
                 assert_eq!(profile.describe(), "plain profile");
@@ -220,7 +226,7 @@ mod tests {
         let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
         let profile = DeviceProfile::of(&small_groups, wgpu::Features::SUBGROUP, true);
         assert!(profile.eye_tiles && profile.packets && profile.packets_for(1) && profile.spread, "{profile:?}");
-        assert!(!profile.uniform_tree && profile.scene_arrays == SceneArrays::Buffers);
+        assert!(!profile.uniform_tree && profile.scene_arrays == SceneArrays::Buffers && profile.workgroups == WorkgroupSizes::PLAIN);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
     }
 

@@ -518,7 +518,7 @@ impl Renderer {
         pass.set_bind_group(0, &scene.scene_bind, &[]);
         pass.set_bind_group(1, &scene.eye_tiles.bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
-        let [across, down] = kernel.workgroup_size().map(|n| n * tuning.block_side(kernel));
+        let [across, down] = tuning.workgroup_size(kernel).map(|n| n * tuning.block_side(kernel));
         pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);
         Ok(())
     }

@@ -116,17 +116,6 @@ impl Kernel {
         if self.is_specialised() { specialization } else { Specialization::ALL }
     }
 
-    /// The invocations of one workgroup across and down (`@workgroup_size`)
-    /// of a kernel that traces row bands (trace, primary, diffuse).
-    pub fn workgroup_size(self) -> [u32; 2] {
-        use glint_encoding::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
-        if self == Kernel::Primary {
-            [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT]
-        } else {
-            [BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT]
-        }
-    }
-
     pub fn entry_point(self) -> &'static str {
         match self {
             Kernel::Trace => "trace_main",

@@ -27,31 +27,75 @@ pub struct Tuning {
     /// in the order of shaders/lib/spread.wgsl (for lavapipe's threads and
     /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
     pub spread: bool,
+    /// The workgroups of the kernels that trace row bands.
+    pub workgroups: WorkgroupSizes,
+}
+
+/// The invocations of a workgroup, across and down, of the kernels that trace
+/// row bands: trace and diffuse, and primary (as wide, its own height). The
+/// prelude declares them (`Tuning::wgsl`) and the host dispatches by them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct WorkgroupSizes {
+    pub width: u32,
+    pub band_height: u32,
+    pub primary_height: u32,
+}
+
+impl WorkgroupSizes {
+    /// 64 invocations: two 32-lane warps or one 64-lane wavefront, the usual
+    /// size of a GPU's two-dimensional compute workgroups.
+    pub const PLAIN: WorkgroupSizes = WorkgroupSizes { width: 8, band_height: 8, primary_height: 8 };
+    /// lavapipe's: its primary kernel's are half as tall, since with packets
+    /// each of their invocations traces two rows.
+    pub const LAVAPIPE: WorkgroupSizes = WorkgroupSizes { width: 8, band_height: 8, primary_height: 4 };
+
+    pub fn band(self) -> [u32; 2] {
+        [self.width, self.band_height]
+    }
+
+    pub fn primary(self) -> [u32; 2] {
+        [self.width, self.primary_height]
+    }
+
+    /// "8x8-8x4": the band kernels' size, then the primary kernel's.
+    fn name(self) -> String {
+        let [[a, b], [c, d]] = [self.band(), self.primary()];
+        format!("{a}x{b}-{c}x{d}")
+    }
 }
 
 impl Tuning {
     /// One ray at a time through the BVH, everything in storage buffers: the
     /// code as the lecture reads it, and what any device runs.
-    pub const PLAIN: Tuning = Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false, spread: false };
+    pub const PLAIN: Tuning = Tuning {
+        arrays: SceneArrays::Buffers,
+        packets: false,
+        uniform_tree: false,
+        eye_tiles: false,
+        spread: false,
+        workgroups: WorkgroupSizes::PLAIN,
+    };
 
     /// Every tuning a profile can choose (eye tiles only over storage
     /// buffers): for tests and dumps of every kernel.
     pub fn all() -> Vec<Tuning> {
         let mut all = Vec::new();
-        for arrays in SceneArrays::ALL {
-            for bits in 0..16u32 {
-                let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
-                // Eye tiles hand SIMD groups blocks of one tile in spread order.
-                if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread });
+        for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+            for arrays in SceneArrays::ALL {
+                for bits in 0..16u32 {
+                    let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+                    // Eye tiles hand SIMD groups blocks of one tile in spread order.
+                    if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
+                        all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, workgroups });
+                    }
                 }
             }
         }
         all
     }
 
-    /// A name for file names: its choices joined by dashes ("buffers" alone
-    /// for the plain tuning).
+    /// A name for file names: its choices joined by dashes, workgroup sizes
+    /// other than the plain ones last ("buffers" alone for the plain tuning).
     pub fn name(self) -> String {
         let arrays = match self.arrays {
             SceneArrays::Buffers => "buffers",
@@ -59,7 +103,9 @@ impl Tuning {
         };
         let choices =
             [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles"), (self.spread, "spread")];
-        std::iter::once(arrays).chain(choices.iter().filter(|(on, _)| *on).map(|(_, name)| *name)).collect::<Vec<_>>().join("-")
+        let chosen = choices.iter().filter(|(on, _)| *on).map(|(_, name)| name.to_string());
+        let workgroups = (self.workgroups != WorkgroupSizes::PLAIN).then(|| self.workgroups.name());
+        std::iter::once(arrays.to_string()).chain(chosen).chain(workgroups).collect::<Vec<_>>().join("-")
     }
 
     /// Whether its kernels need the device's subgroup operations.
@@ -70,13 +116,21 @@ impl Tuning {
     /// What `kernel` is compiled with when a scene's kernels are tuned this
     /// way: only what changes its code, so that its renders share one
     /// pipeline (and one entry of a driver's disk cache) whatever else
-    /// differs. Only the primary kernel traces packets.
+    /// differs. Only the primary kernel traces packets, and only the kernels
+    /// that trace row bands have their workgroup sizes.
     pub fn for_kernel(self, kernel: Kernel) -> Tuning {
         match kernel {
             Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, ..self },
-            _ if kernel.is_specialised() => Tuning { packets: false, eye_tiles: false, ..self },
-            _ => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
+            Kernel::Trace | Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, ..self },
+            Kernel::Probe => Tuning { packets: false, eye_tiles: false, workgroups: WorkgroupSizes::PLAIN, ..self },
+            Kernel::Resolve | Kernel::Present => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
         }
+    }
+
+    /// The invocations of one workgroup of `kernel`, a kernel that traces row
+    /// bands, across and down (its `@workgroup_size`).
+    pub fn workgroup_size(self, kernel: Kernel) -> [u32; 2] {
+        if kernel == Kernel::Primary { self.workgroups.primary() } else { self.workgroups.band() }
     }
 
     /// The side of the square block of pixels one invocation of `kernel`
@@ -87,7 +141,12 @@ impl Tuning {
 
     /// The WGSL constants that carry it, appended to a kernel's prelude.
     pub fn wgsl(self) -> String {
-        format!("const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\nconst SPREAD: bool = {};\n", self.uniform_tree, self.packets, self.spread)
+        let WorkgroupSizes { width, band_height, primary_height } = self.workgroups;
+        format!(
+            "const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\nconst SPREAD: bool = {};\n\
+             const BAND_WORKGROUP_WIDTH: u32 = {width}u;\nconst BAND_WORKGROUP_HEIGHT: u32 = {band_height}u;\nconst PRIMARY_WORKGROUP_HEIGHT: u32 = {primary_height}u;\n",
+            self.uniform_tree, self.packets, self.spread
+        )
     }
 }
 
@@ -138,14 +197,49 @@ mod tests {
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
+        let fast = Tuning {
+            arrays: SceneArrays::Buffers,
+            packets: true,
+            uniform_tree: true,
+            eye_tiles: true,
+            spread: true,
+            workgroups: WorkgroupSizes::LAVAPIPE,
+        };
         assert_eq!(fast.for_kernel(Kernel::Primary), fast);
         assert_eq!(fast.block_side(Kernel::Primary), 2);
-        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, spread: true, ..Tuning::PLAIN });
+        let trace = Tuning { uniform_tree: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
+        assert_eq!(fast.for_kernel(Kernel::Trace), trace);
+        assert_eq!(fast.for_kernel(Kernel::Probe), Tuning { workgroups: WorkgroupSizes::PLAIN, ..trace }, "the probe traces no bands");
         assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
         assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
         let no_packets = Tuning { packets: false, ..fast };
         assert!(!no_packets.for_kernel(Kernel::Primary).eye_tiles, "eye tiles are walked by packets");
         assert_eq!(no_packets.block_side(Kernel::Primary), 1);
+    }
+
+    #[test]
+    fn the_prelude_declares_the_workgroup_sizes_the_host_dispatches_by() {
+        for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+            let tuning = Tuning { workgroups, ..Tuning::PLAIN };
+            let [[width, band_height], [_, primary_height]] = [tuning.workgroup_size(Kernel::Trace), tuning.workgroup_size(Kernel::Primary)];
+            assert_eq!(tuning.workgroup_size(Kernel::Diffuse), [width, band_height]);
+            for (name, value) in [("BAND_WORKGROUP_WIDTH", width), ("BAND_WORKGROUP_HEIGHT", band_height), ("PRIMARY_WORKGROUP_HEIGHT", primary_height)] {
+                assert!(tuning.wgsl().contains(&format!("const {name}: u32 = {value}u;")), "{}", tuning.wgsl());
+            }
+        }
+        assert_eq!(Tuning { workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN }.name(), "buffers-8x8-8x4");
+        assert_eq!(Tuning::PLAIN.name(), "buffers");
+    }
+
+    #[test]
+    fn every_workgroup_deals_2x2_blocks_and_covers_whole_eye_tiles() {
+        use glint_encoding::gpu_types::{EYE_TILE_HEIGHT, EYE_TILE_WIDTH};
+        for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+            for [across, down] in [workgroups.band(), workgroups.primary()] {
+                assert!(across % 2 == 0 && down % 2 == 0, "spread_invocation deals places in 2x2 blocks: {workgroups:?}");
+            }
+            let [across, down] = workgroups.primary().map(|n| 2 * n);
+            assert!(across % EYE_TILE_WIDTH == 0 && down % EYE_TILE_HEIGHT == 0, "a packet workgroup's SIMD groups stay in one tile: {workgroups:?}");
+        }
     }
 }

@@ -10,11 +10,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use glint_encoding::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
 use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
-use glint_encoding::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
 use glint_scene::Scene;
 
 /// Bands submitted but not finished; more would only queue up latency.
@@ -252,9 +252,9 @@ mod tests {
     use std::path::Path;
     use std::sync::Arc;
 
+    use glint_encoding::gpu_types::View;
     use glint_gpu::shaders::{Kernel, ShaderSource};
     use glint_gpu::Tuning;
-    use glint_encoding::gpu_types::View;
 
     use super::{Canvas, Kernels};
 

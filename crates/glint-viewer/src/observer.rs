@@ -6,9 +6,9 @@
 
 use egui::{Color32, Painter, Pos2, Rect, Shape, Stroke};
 use glam::DVec2;
+use glint_encoding::observer::{clip_to_box, Ink, Observer, Overlay, RayId};
 use glint_gpu::probe::RayTree;
 use glint_scene::camera_frame::CameraFrame;
-use glint_encoding::observer::{clip_to_box, Ink, Observer, Overlay, RayId};
 use glint_scene::Camera;
 
 /// The colour of the ray whose node the pointer is over.

@@ -6,8 +6,8 @@ use std::ops::RangeInclusive;
 
 use egui::{CollapsingHeader, ComboBox, Slider, SliderClamping, Ui};
 use glam::Vec3;
-use glint_gpu::ToneMap;
 use glint_encoding::gpu_types::View;
+use glint_gpu::ToneMap;
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::{Attenuation, Checker, DepthCue, Light, LightKind, Projection, ShadowMode, Shape, SpecularModel};
 
