@@ -161,9 +161,10 @@ fn every_four_consecutive_invocations_trace_a_2x2_block() {
     }
 }
 
-/// The plain profile's row order traces the pixels and counts the rays that
-/// spread order does: for the trace, primary and diffuse kernels, single rays
-/// and packets, in an image whose workgroups overhang its edges.
+/// The plain profile's row order and workgroup sizes trace the pixels and
+/// count the rays that lavapipe's spread order and sizes do: for the trace,
+/// primary and diffuse kernels, single rays and packets, in an image whose
+/// workgroups overhang its edges.
 #[test]
 fn row_order_traces_what_spread_order_traces() {
     let renderer = support::renderer();
@@ -173,12 +174,13 @@ fn row_order_traces_what_spread_order_traces() {
         for view in [View::Shaded, View::Depth, View::Diffuse] {
             for packets in [false, true] {
                 let options = glint_gpu::RenderOptions { view, spp: 2, ..Default::default() };
-                let mut render = |spread| {
+                let mut render = |spread, workgroups| {
                     let tuning = &mut prepared.buffers.tuning;
-                    (tuning.packets, tuning.eye_tiles, tuning.spread) = (packets, false, spread);
+                    (tuning.packets, tuning.eye_tiles, tuning.spread, tuning.workgroups) = (packets, false, spread, workgroups);
                     renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
                 };
-                let ((spread, spread_stats), (rows, row_stats)) = (render(true), render(false));
+                let (spread, spread_stats) = render(true, WorkgroupSizes::LAVAPIPE);
+                let (rows, row_stats) = render(false, WorkgroupSizes::PLAIN);
                 let case = format!("{name}, {view:?} view, packets {packets}");
                 support::assert_images_equal(&rows.linear, &spread.linear, 0, &case);
                 assert_eq!(row_stats, spread_stats, "{case}");
