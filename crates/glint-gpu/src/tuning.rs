@@ -76,20 +76,24 @@ impl Tuning {
         workgroups: WorkgroupSizes::PLAIN,
     };
 
-    /// Every tuning a profile can choose (eye tiles only over storage
-    /// buffers): for tests and dumps of every kernel.
+    /// Every tuning a profile can choose, and every one tests set on
+    /// lavapipe (eye tiles only over storage buffers): for tests and dumps of
+    /// every kernel.
     pub fn all() -> Vec<Tuning> {
         let mut all = Vec::new();
-        for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
-            for arrays in SceneArrays::ALL {
-                for bits in 0..16u32 {
-                    let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
-                    // Eye tiles hand SIMD groups blocks of one tile in spread order.
-                    if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
-                        all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, workgroups });
-                    }
+        for arrays in SceneArrays::ALL {
+            for bits in 0..16u32 {
+                let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+                // Eye tiles hand SIMD groups blocks of one tile in spread order.
+                if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, workgroups: WorkgroupSizes::LAVAPIPE });
                 }
             }
+        }
+        // The plain profile's: single rays in row order, or, where subgroups
+        // fit, packets in spread order, with or without the view's eye tiles.
+        for (packets, eye_tiles, spread) in [(false, false, false), (true, false, true), (true, true, true)] {
+            all.push(Tuning { packets, eye_tiles, spread, ..Tuning::PLAIN });
         }
         all
     }
