@@ -23,14 +23,7 @@ fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
 
     let scene = glint_scene::load(std::path::Path::new("spd:tetra:2")).unwrap();
     let prepared = support::renderer().prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
-    let tuned = Tuning {
-        arrays: SceneArrays::Buffers,
-        packets: true,
-        uniform_tree: true,
-        eye_tiles: true,
-        spread: true,
-        workgroups: WorkgroupSizes::LAVAPIPE,
-    };
+    let tuned = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE };
     assert_eq!(prepared.buffers.tuning, tuned);
 }
 

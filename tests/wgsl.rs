@@ -38,14 +38,7 @@ fn every_kernel_validates_in_every_tuning() {
 /// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
-    let lavapipe = Tuning {
-        arrays: SceneArrays::Buffers,
-        packets: true,
-        uniform_tree: true,
-        eye_tiles: false,
-        spread: true,
-        workgroups: WorkgroupSizes::LAVAPIPE,
-    };
+    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false, spread: true, workgroups: WorkgroupSizes::LAVAPIPE };
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, ..)| name == "lib/primitive.wgsl");

@@ -201,14 +201,7 @@ mod tests {
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning {
-            arrays: SceneArrays::Buffers,
-            packets: true,
-            uniform_tree: true,
-            eye_tiles: true,
-            spread: true,
-            workgroups: WorkgroupSizes::LAVAPIPE,
-        };
+        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE };
         assert_eq!(fast.for_kernel(Kernel::Primary), fast);
         assert_eq!(fast.block_side(Kernel::Primary), 2);
         let trace = Tuning { uniform_tree: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
