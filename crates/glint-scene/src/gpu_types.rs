@@ -717,4 +717,45 @@ normal = [0, 0, -1]
         assert_eq!((board.flags & MATERIAL_CHECKER, board.checker, board.checker_size), (MATERIAL_CHECKER, [1.0, 1.0, 0.0], 0.5));
         assert_eq!(pack_material(&scene.materials[0]).flags & MATERIAL_CHECKER, 0);
     }
+
+    /// Every registered kind is packed from a shape, and each shape has the
+    /// one name every tool shows it by (`Shape::name`).
+    #[test]
+    fn every_registered_kind_is_packed_from_a_shape_with_a_name() {
+        let toml = r#"
+[[object]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+[[object]]
+type = "triangle"
+vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+[[object]]
+type = "polygon"
+vertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+[[object]]
+type = "cone"
+base = [0, 0, 0]
+base_radius = 1
+apex = [0, 1, 0]
+apex_radius = 0.5
+[[object]]
+type = "cylinder"
+base = [0, 0, 0]
+base_radius = 1
+apex = [0, 1, 0]
+[[object]]
+type = "plane"
+point = [0, 0, 0]
+normal = [0, 1, 0]
+"#;
+        let scene = crate::toml_scene::parse(&format!("{}{toml}", &SCENE[..SCENE.find("[[object]]").unwrap()]), std::path::Path::new("s.toml")).unwrap();
+        let shapes: Vec<&Shape> = scene.objects.iter().flat_map(|o| &o.shapes).collect();
+        assert_eq!(shapes.iter().map(|s| s.name()).collect::<Vec<_>>(), crate::SHAPE_NAMES);
+        let bvh = crate::bvh::Bvh::build(&primitive_bounds(&scene));
+        let packed = pack(&scene, &bvh.order, bvh.gpu().unwrap());
+        for kind in crate::primitive_kinds::KINDS {
+            assert!(packed.prims.iter().any(|p| p.kind_material & 0xff == kind.code), "no shape is packed as {}", kind.code_name);
+        }
+    }
 }

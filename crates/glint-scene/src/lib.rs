@@ -38,7 +38,7 @@ pub use light::{Attenuation, Light, LightKind};
 pub use material::{Checker, Material, SpecularModel};
 pub use ray_stats::RayStats;
 pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
-pub use shape::{plane_axes, Shape, ShapeProblem};
+pub use shape::{plane_axes, Shape, ShapeProblem, SHAPE_NAMES};
 
 use std::path::Path;
 
