@@ -722,34 +722,16 @@ normal = [0, 0, -1]
     /// one name every tool shows it by (`Shape::name`).
     #[test]
     fn every_registered_kind_is_packed_from_a_shape_with_a_name() {
-        let toml = r#"
-[[object]]
-type = "sphere"
-center = [0, 0, 0]
-radius = 1
-[[object]]
-type = "triangle"
-vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
-[[object]]
-type = "polygon"
-vertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
-[[object]]
-type = "cone"
-base = [0, 0, 0]
-base_radius = 1
-apex = [0, 1, 0]
-apex_radius = 0.5
-[[object]]
-type = "cylinder"
-base = [0, 0, 0]
-base_radius = 1
-apex = [0, 1, 0]
-[[object]]
-type = "plane"
-point = [0, 0, 0]
-normal = [0, 1, 0]
-"#;
-        let scene = crate::toml_scene::parse(&format!("{}{toml}", &SCENE[..SCENE.find("[[object]]").unwrap()]), std::path::Path::new("s.toml")).unwrap();
+        let shapes = [
+            Shape::sphere(Vec3::ZERO, 1.0),
+            Shape::triangle([Vec3::ZERO, Vec3::X, Vec3::Y], None),
+            Shape::polygon(vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y]).map(|(shape, _)| shape),
+            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 0.5),
+            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 1.0),
+            Shape::plane(Vec3::ZERO, Vec3::Y),
+        ];
+        let mut scene = crate::toml_scene::parse(SCENE, std::path::Path::new("s.toml")).unwrap();
+        scene.objects = shapes.into_iter().map(|shape| crate::Object { material: 0, shapes: vec![shape.unwrap()] }).collect();
         let shapes: Vec<&Shape> = scene.objects.iter().flat_map(|o| &o.shapes).collect();
         assert_eq!(shapes.iter().map(|s| s.name()).collect::<Vec<_>>(), crate::SHAPE_NAMES);
         let bvh = crate::bvh::Bvh::build(&primitive_bounds(&scene));
