@@ -118,17 +118,25 @@ fn the_ray_tree_walks_the_bvh_through_one_call() {
     }
 }
 
+/// The WGSL files under `dir`, at any depth, named relative to `shaders/`.
+fn wgsl_files_under(dir: &std::path::Path, found: &mut BTreeSet<String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            wgsl_files_under(&path, found);
+        } else if path.extension().is_some_and(|e| e == "wgsl") {
+            let name = path.strip_prefix(ShaderSource::source_dir()).unwrap().to_str().unwrap().replace('\\', "/");
+            found.insert(name);
+        }
+    }
+}
+
 /// `shaders/` holds exactly the embedded files, each reached by some kernel.
 #[test]
 fn every_shader_file_is_embedded_and_part_of_a_kernel() {
-    let dir = ShaderSource::source_dir();
     let mut on_disk = BTreeSet::new();
-    for sub in ["kernels", "lib"] {
-        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
-            on_disk.insert(format!("{sub}/{}", entry.unwrap().file_name().into_string().unwrap()));
-        }
-    }
-    assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
+    wgsl_files_under(&ShaderSource::source_dir(), &mut on_disk);
+    assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and the embedded files differ");
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
         .flat_map(|&k| Tuning::all().into_iter().map(move |tuning| ShaderSource::Embedded.compose(k, Specialization::ALL, tuning).unwrap()))
@@ -179,7 +187,7 @@ fn imports_are_exactly_what_each_file_uses() {
     assert_eq!(through_bvh, through_tiles, "the two walks of a block's eye rays declare different functions");
     let mut declared: BTreeMap<String, Vec<String>> = SOURCES
         .iter()
-        .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n) && !is_eye_block(n))
+        .filter(|n| !n.starts_with("kernels/") && !is_scene_arrays(n) && !is_eye_block(n))
         .map(|n| (n.to_string(), declarations(&expand(&read(n)).unwrap())))
         .collect();
     declared.insert(SCENE_ARRAYS_IMPORT.to_string(), buffers);
@@ -227,9 +235,9 @@ fn errors_name_the_file_and_line() {
     // Past a generated piece, lines are still the file's own.
     break_name("lib/primitive.wgsl", "let m =");
 
-    std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
+    std::fs::write(dir.path().join("lib/sphere.wgsl"), "// A sphere.\n// import: types nowhere\n").unwrap();
     let err = compose().unwrap_err().to_string();
-    assert!(err.contains("lib/nowhere.wgsl"), "{err}");
+    assert!(err.contains("shaders/lib/sphere.wgsl:2: imports lib/nowhere.wgsl, which is no shader file"), "{err}");
     std::fs::copy(ShaderSource::source_dir().join("lib/sphere.wgsl"), dir.path().join("lib/sphere.wgsl")).unwrap();
     std::fs::write(dir.path().join("lib/primitive.wgsl"), "// generated: intersect_disk\n").unwrap();
     let err = compose().unwrap_err().to_string();
@@ -256,7 +264,7 @@ fn each_composed_line_is_the_line_it_is_located_at() {
         assert_eq!(pieces > 0, generated > 0, "{kernel:?}");
     }
     for kind in KINDS {
-        assert!(SOURCES.contains(&kind.file), "{} is not in shaders.rs's sources!", kind.file);
+        assert!(SOURCES.contains(&kind.file), "{} is not embedded", kind.file);
     }
 }
 

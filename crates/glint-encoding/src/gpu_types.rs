@@ -717,4 +717,27 @@ normal = [0, 0, -1]
         assert_eq!((board.flags & MATERIAL_CHECKER, board.checker, board.checker_size), (MATERIAL_CHECKER, [1.0, 1.0, 0.0], 0.5));
         assert_eq!(pack_material(&scene.materials[0]).flags & MATERIAL_CHECKER, 0);
     }
+
+    /// Every registered kind is packed from a shape, and each shape has the
+    /// one name every tool shows it by (`Shape::name`).
+    #[test]
+    fn every_registered_kind_is_packed_from_a_shape_with_a_name() {
+        let shapes = [
+            Shape::sphere(Vec3::ZERO, 1.0),
+            Shape::triangle([Vec3::ZERO, Vec3::X, Vec3::Y], None),
+            Shape::polygon(vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y]).map(|(shape, _)| shape),
+            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 0.5),
+            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 1.0),
+            Shape::plane(Vec3::ZERO, Vec3::Y),
+        ];
+        let mut scene = glint_scene::toml_scene::parse(SCENE, std::path::Path::new("s.toml")).unwrap();
+        scene.objects = shapes.into_iter().map(|shape| glint_scene::Object { material: 0, shapes: vec![shape.unwrap()] }).collect();
+        let shapes: Vec<&Shape> = scene.objects.iter().flat_map(|o| &o.shapes).collect();
+        assert_eq!(shapes.iter().map(|s| s.name()).collect::<Vec<_>>(), glint_scene::SHAPE_NAMES);
+        let bvh = glint_scene::bvh::Bvh::build(&primitive_bounds(&scene));
+        let packed = pack(&scene, &bvh.order, GpuBvh::encode(&bvh).unwrap());
+        for kind in KINDS {
+            assert!(packed.prims.iter().any(|p| p.kind_material & 0xff == kind.code), "no shape is packed as {}", kind.code_name);
+        }
+    }
 }

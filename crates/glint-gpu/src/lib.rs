@@ -27,7 +27,7 @@ pub mod stitch;
 mod tiles;
 mod tuning;
 
-pub use device::{adapter_rank, backends, driver_warning, Gpu, ADAPTER_ENV, NO_ADAPTER_HINT};
+pub use device::{adapter_rank, backends, device_descriptor, driver_warning, Gpu, SceneLimits, ADAPTER_ENV, NO_ADAPTER_HINT};
 pub use lavapipe::{
     compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_dir, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,

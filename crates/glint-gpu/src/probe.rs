@@ -8,7 +8,7 @@ use glint_encoding::gpu_types::{
     PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
 };
 use glint_encoding::specialization::Specialization;
-use glint_scene::{Scene, Shape};
+use glint_scene::Scene;
 
 use crate::pipelines::create_pipeline;
 use crate::shaders::{Kernel, ShaderSource};
@@ -189,12 +189,7 @@ impl TreeText<'_> {
         let number = index as usize + self.first_number;
         let Some(object) = self.scene.objects.get(index as usize) else { return format!("object {number}") };
         let shape = match object.shapes.as_slice() {
-            [Shape::Sphere { .. }] => "sphere".to_string(),
-            [Shape::Triangle { .. }] => "triangle".to_string(),
-            [Shape::Polygon { vertices }] => format!("{}-gon", vertices.len()),
-            [Shape::Cone { base_radius, apex_radius, .. }] if base_radius == apex_radius => "cylinder".to_string(),
-            [Shape::Cone { .. }] => "cone".to_string(),
-            [Shape::Plane { .. }] => "plane".to_string(),
+            [shape] => shape.name().to_string(),
             shapes => format!("mesh of {} primitives", shapes.len()),
         };
         let material = self.scene.materials.get(object.material).map_or("?", |m| m.name.as_str());

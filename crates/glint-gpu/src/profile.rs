@@ -147,17 +147,17 @@ fn is_lavapipe(info: &wgpu::AdapterInfo) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn adapter(name: &str, device_type: wgpu::DeviceType, subgroups: u32) -> wgpu::AdapterInfo {
+    pub(crate) fn adapter(name: &str, device_type: wgpu::DeviceType, subgroups: u32) -> wgpu::AdapterInfo {
         let mut info = wgpu::AdapterInfo::new(device_type, wgpu::Backend::Vulkan);
         info.name = name.into();
         (info.subgroup_min_size, info.subgroup_max_size) = (subgroups, subgroups);
         info
     }
 
-    fn lavapipe(bits: u32) -> wgpu::AdapterInfo {
+    pub(crate) fn lavapipe(bits: u32) -> wgpu::AdapterInfo {
         adapter(&format!("llvmpipe (LLVM 19.1.7, {bits} bits)"), wgpu::DeviceType::Cpu, bits / 32)
     }
 

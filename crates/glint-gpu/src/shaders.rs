@@ -11,8 +11,8 @@
 //! glint-encoding's registry (primitive_dispatch.rs), and its file imports every
 //! kind's file. Errors are mapped back to the file and line they came from.
 //!
-//! The files are embedded at build time; `ShaderSource::Dir` reads them from
-//! disk instead (the viewer's hot reload).
+//! build.rs embeds every file under `shaders/`; `ShaderSource::Dir` reads
+//! them from disk instead (the viewer's hot reload).
 
 use std::path::{Path, PathBuf};
 
@@ -23,51 +23,8 @@ use crate::primitive_dispatch;
 use crate::tuning::Tuning;
 use crate::GpuError;
 
-/// Embeds every shader file, named once: the list hot reload watches.
-macro_rules! sources {
-    ($($name:literal),* $(,)?) => {
-        /// Every WGSL file, relative to `shaders/`.
-        pub const SOURCES: &[&str] = &[$($name),*];
-        const EMBEDDED: &[(&str, &str)] = &[$(($name, include_str!(concat!("../../../shaders/", $name)))),*];
-    };
-}
-
-sources![
-    "kernels/trace.wgsl",
-    "kernels/primary.wgsl",
-    "kernels/diffuse.wgsl",
-    "kernels/resolve.wgsl",
-    "kernels/present.wgsl",
-    "kernels/probe.wgsl",
-    "lib/types.wgsl",
-    "lib/bindings.wgsl",
-    "lib/scene_buffers.wgsl",
-    "lib/scene_textures.wgsl",
-    "lib/uniform_tree.wgsl",
-    "lib/camera.wgsl",
-    "lib/sample.wgsl",
-    "lib/ray_frame.wgsl",
-    "lib/sphere.wgsl",
-    "lib/triangle.wgsl",
-    "lib/plane.wgsl",
-    "lib/polygon.wgsl",
-    "lib/cone.wgsl",
-    "lib/primitive.wgsl",
-    "lib/bvh.wgsl",
-    "lib/packet.wgsl",
-    "lib/eye_bvh.wgsl",
-    "lib/eye_tiles.wgsl",
-    "lib/reflect.wgsl",
-    "lib/refract.wgsl",
-    "lib/shadow.wgsl",
-    "lib/checker.wgsl",
-    "lib/shade.wgsl",
-    "lib/spread.wgsl",
-    "lib/dispatch.wgsl",
-    "lib/ray_tree.wgsl",
-    "lib/diffuse_view.wgsl",
-    "lib/display.wgsl",
-];
+// `SOURCES` and `EMBEDDED`: every file under `shaders/`, listed by build.rs.
+include!(concat!(env!("OUT_DIR"), "/shader_files.rs"));
 
 /// The kernels, each one file of `shaders/kernels/` with one entry point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -132,16 +89,20 @@ impl Kernel {
 /// file that asks for generated dispatch also imports every kind's file, in
 /// the order of names as import lines are written.
 pub fn imports(source: &str) -> Vec<String> {
-    let mut files: Vec<String> = source
-        .lines()
-        .filter_map(|line| line.trim().strip_prefix("// import:"))
-        .flat_map(str::split_whitespace)
-        .map(|name| format!("lib/{name}.wgsl"))
+    imports_by_line(source).into_iter().map(|(_, file)| file).collect()
+}
+
+/// [`imports`], each with the number of the line that imports it (1-based).
+fn imports_by_line(source: &str) -> Vec<(usize, String)> {
+    let lines = || source.lines().enumerate().map(|(i, line)| (i + 1, line.trim()));
+    let mut files: Vec<(usize, String)> = lines()
+        .filter_map(|(n, line)| Some((n, line.strip_prefix("// import:")?)))
+        .flat_map(|(n, names)| names.split_whitespace().map(move |name| (n, format!("lib/{name}.wgsl"))))
         .collect();
-    if source.lines().any(|line| line.trim().starts_with(primitive_dispatch::MARKER)) {
-        files.extend(KINDS.iter().map(|k| k.file.to_string()));
-        files.sort();
-        files.dedup();
+    if let Some((n, _)) = lines().find(|(_, line)| line.starts_with(primitive_dispatch::MARKER)) {
+        files.extend(KINDS.iter().map(|k| (n, k.file.to_string())));
+        files.sort_by(|a, b| a.1.cmp(&b.1));
+        files.dedup_by(|a, b| a.1 == b.1);
     }
     files
 }
@@ -329,16 +290,9 @@ impl ShaderSource {
         Ok(Composed { source, files: starts })
     }
 
-    /// Appends `name` to `order` after everything it imports (depth first),
-    /// the import of the scene's arrays and that of the eye block's walk as
-    /// the files `tuning` chooses; `path` is the chain of imports being
-    /// followed, to report a cycle.
+    /// Appends `name` to `order` after everything it imports (depth first);
+    /// `path` is the chain of imports being followed, to report a cycle.
     fn visit(&self, name: &str, tuning: Tuning, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
-        let name = match name {
-            SCENE_ARRAYS_IMPORT => tuning.arrays.file(),
-            EYE_BLOCK_IMPORT => eye_block_file(tuning),
-            name => name,
-        };
         if order.iter().any(|(done, _)| done == name) {
             return Ok(());
         }
@@ -347,11 +301,32 @@ impl ShaderSource {
         }
         let text = self.read(name)?;
         path.push(name.to_string());
-        for import in imports(&text) {
-            self.visit(&import, tuning, path, order)?;
+        for (line, import) in imports_by_line(&text) {
+            let import = chosen_file(&import, tuning);
+            if !self.exists(import) {
+                return Err(GpuError::Shader(format!("shaders/{name}:{line}: imports {import}, which is no shader file")));
+            }
+            self.visit(import, tuning, path, order)?;
         }
         path.pop();
         order.push((name.to_string(), text));
         Ok(())
+    }
+
+    fn exists(&self, name: &str) -> bool {
+        match self {
+            ShaderSource::Embedded => SOURCES.contains(&name),
+            ShaderSource::Dir(dir) => dir.join(name).is_file(),
+        }
+    }
+}
+
+/// The file an import names: for the import of the scene's arrays and that
+/// of the eye block's walk, the one `tuning` chooses.
+fn chosen_file(import: &str, tuning: Tuning) -> &str {
+    match import {
+        SCENE_ARRAYS_IMPORT => tuning.arrays.file(),
+        EYE_BLOCK_IMPORT => eye_block_file(tuning),
+        file => file,
     }
 }

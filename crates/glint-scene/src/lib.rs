@@ -29,7 +29,7 @@ pub use error::{LoadError, Location};
 pub use light::{Attenuation, Light, LightKind};
 pub use material::{Checker, Material, SpecularModel};
 pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_MATERIALS};
-pub use shape::{plane_axes, polygon_normal, Shape, ShapeProblem};
+pub use shape::{plane_axes, polygon_normal, Shape, ShapeProblem, SHAPE_NAMES};
 
 use std::path::Path;
 

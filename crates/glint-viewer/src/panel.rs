@@ -49,16 +49,6 @@ fn point(ui: &mut Ui, p: &mut Vec3, lo: Vec3, hi: Vec3) {
     }
 }
 
-fn kind_name(shape: &Shape) -> &'static str {
-    match shape {
-        Shape::Sphere { .. } => "sphere",
-        Shape::Triangle { .. } => "triangle",
-        Shape::Polygon { .. } => "polygon",
-        Shape::Cone { .. } => "cone",
-        Shape::Plane { .. } => "plane",
-    }
-}
-
 impl ViewerApp {
     pub(crate) fn controls(&mut self, ui: &mut Ui) {
         self.scene_section(ui);
@@ -289,7 +279,7 @@ impl ViewerApp {
         CollapsingHeader::new("Selected object").default_open(true).show(ui, |ui| {
             let Some(doc) = self.document.loaded.as_mut() else { return };
             let Some(object) = doc.scene.objects.get(index) else { return };
-            let kind = object.shapes.first().map_or("empty", kind_name);
+            let kind = object.shapes.first().map_or("empty", Shape::name);
             let m = object.material;
             let users = doc.scene.objects.iter().filter(|o| o.material == m).count();
             ui.label(format!("Object {}: {kind}, {} primitive(s)", index + 1, object.shapes.len()));
