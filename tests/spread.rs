@@ -1,4 +1,4 @@
-//! The order of a dispatch's workgroups over a band (`lib/spread.wgsl`), run
+//! The order of a dispatch's workgroups over a band (`fast/spread.wgsl`), run
 //! on the device: every workgroup gets a place of its own, and each of the
 //! runs of consecutive workgroups lavapipe deals its threads holds its share
 //! of every strip of the band, whatever the count; and a workgroup's
@@ -33,7 +33,7 @@ fn places(groups: [u32; 2]) -> Vec<u32> {
 fn run_places(kernel: &str, groups: [u32; 2], count: usize) -> Vec<u32> {
     let gpu = support::gpu();
     let device = &gpu.device;
-    let spread = std::fs::read_to_string(ShaderSource::source_dir().join("lib/spread.wgsl")).unwrap();
+    let spread = std::fs::read_to_string(ShaderSource::source_dir().join("fast/spread.wgsl")).unwrap();
     let source = format!("{}{spread}{kernel}", wgsl_prelude());
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("spread"),

@@ -5,8 +5,8 @@ use std::mem::{offset_of, size_of};
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
-use glint_gpu::Tuning;
+use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, SOURCES};
+use glint_gpu::{Tuning, STAND_INS};
 use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
 use glint_scene::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
@@ -119,7 +119,7 @@ fn the_ray_tree_walks_the_bvh_through_one_call() {
 fn every_shader_file_is_embedded_and_part_of_a_kernel() {
     let dir = ShaderSource::source_dir();
     let mut on_disk = BTreeSet::new();
-    for sub in ["kernels", "lib"] {
+    for sub in ["kernels", "lib", "fast"] {
         for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
             on_disk.insert(format!("{sub}/{}", entry.unwrap().file_name().into_string().unwrap()));
         }
@@ -156,39 +156,49 @@ fn declarations(source: &str) -> Vec<String> {
 
 /// Imports are stated, not inherited, and none is idle: a file uses a name
 /// declared in another file only if it imports that file, and it uses
-/// something of every file it imports. The import `scene_arrays` stands for
-/// either file of the scene's arrays, which declare the same functions, and
-/// `eye_block` for either walk of a block's eye rays. The primary kernel
-/// carries no ray tree.
+/// something of every file it imports. A fast/ file that stands in for a
+/// lib/ file declares that file's functions, and an import of the lib/ file
+/// stands for it too. The primary kernel carries no ray tree.
 #[test]
 fn imports_are_exactly_what_each_file_uses() {
-    let read = |name: &str| std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
-    let is_scene_arrays = |name: &str| SceneArrays::ALL.iter().any(|a| a.file() == name);
-    let is_eye_block = |name: &str| EYE_BLOCK_FILES.contains(&name);
-    let functions = |file: &str| -> Vec<String> {
+    let read = |name: &str| expand(&std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap()).unwrap();
+    let functions = |file: &str| -> BTreeSet<String> {
         let source = read(file);
         declarations(&source).into_iter().filter(|n| source.contains(&format!("fn {n}("))).collect()
     };
-    let [buffers, textures] = SceneArrays::ALL.map(|arrays| functions(arrays.file()).into_iter().filter(|n| n != "texel_of").collect::<Vec<_>>());
-    assert_eq!(buffers, textures, "the two files of the scene's arrays declare different functions");
-    let [through_bvh, through_tiles] = EYE_BLOCK_FILES.map(functions);
-    assert_eq!(through_bvh, through_tiles, "the two walks of a block's eye rays declare different functions");
-    let mut declared: BTreeMap<String, Vec<String>> = SOURCES
+    let plain_of = |name: &str| STAND_INS.iter().find(|s| s.fast == name).map(|s| s.plain);
+    for stand_in in STAND_INS {
+        let missing: Vec<String> = functions(stand_in.plain).difference(&functions(stand_in.fast)).cloned().collect();
+        assert!(missing.is_empty(), "shaders/{} stands in for {} without {missing:?}", stand_in.fast, stand_in.plain);
+    }
+    // A stand-in's own names are what it declares beyond the file it stands in for.
+    let declared: BTreeMap<String, Vec<String>> = SOURCES
         .iter()
-        .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n) && !is_eye_block(n))
-        .map(|n| (n.to_string(), declarations(&expand(&read(n)).unwrap())))
+        .filter(|n| !n.starts_with("kernels/"))
+        .map(|n| {
+            let plain: Vec<String> = plain_of(n).map(|p| declarations(&read(p))).unwrap_or_default();
+            (n.to_string(), declarations(&read(n)).into_iter().filter(|d| !plain.contains(d)).collect())
+        })
         .collect();
-    declared.insert(SCENE_ARRAYS_IMPORT.to_string(), buffers);
-    declared.insert(EYE_BLOCK_IMPORT.to_string(), through_bvh);
+    // The names a file's code uses, members after a `.` left out.
     let words = |source: &str| -> BTreeSet<String> {
         let code: String = source.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
-        code.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect()
+        let mut words = BTreeSet::new();
+        let mut rest = code.as_str();
+        while let Some(start) = rest.find(|c: char| c.is_alphanumeric() || c == '_') {
+            let len = rest[start..].find(|c: char| !(c.is_alphanumeric() || c == '_')).unwrap_or(rest.len() - start);
+            if !rest[..start].ends_with('.') {
+                words.insert(rest[start..start + len].to_string());
+            }
+            rest = &rest[start + len..];
+        }
+        words
     };
     for name in SOURCES {
-        let source = read(name);
-        let (used, imported) = (words(&expand(&source).unwrap()), imports(&source));
+        let raw = std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
+        let (used, imported) = (words(&read(name)), imports(&raw));
         for (file, names) in &declared {
-            if file == name || (file == SCENE_ARRAYS_IMPORT && is_scene_arrays(name)) || (file == EYE_BLOCK_IMPORT && is_eye_block(name)) {
+            if file == name || plain_of(name) == Some(file.as_str()) {
                 continue;
             }
             let uses = names.iter().any(|n| used.contains(n));

@@ -1,6 +1,6 @@
 // What every tracing kernel does around its rays: which pixel of the band an
 // invocation has, adding its sample to the pixel's sum, and counting rays.
-// import: bindings spread
+// import: band_order bindings
 
 var<private> local_stats: array<u32, STAT_COUNT>;
 
@@ -30,16 +30,9 @@ fn dispatch_view() -> u32 {
 // The pixel an invocation traces in the current band, if the band covers one;
 // the top-left pixel of its block for a kernel whose invocations trace blocks
 // of `side`×`side` pixels. `size` is the kernel's workgroup size. Workgroups
-// and invocations take their places in row order, or with SPREAD in the
-// order of spread.wgsl.
+// and invocations take their places in the order of band_order.wgsl.
 fn band_pixel(wid: vec3<u32>, lid: vec3<u32>, groups: vec3<u32>, size: vec2<u32>, side: u32) -> vec2<u32> {
-    var group = wid.xy;
-    var invocation = lid.xy;
-    if SPREAD {
-        group = spread_workgroup(wid, groups);
-        invocation = spread_invocation(lid, size);
-    }
-    return side * (group * size + invocation) + dispatch.origin;
+    return side * band_place(wid, lid, groups, size) + dispatch.origin;
 }
 
 // Pixel k of the 2×2 block whose top-left pixel is `corner`, left to right,

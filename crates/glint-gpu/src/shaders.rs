@@ -1,11 +1,13 @@
 //! WGSL composition. `shaders/kernels/` holds one file per kernel (its entry
-//! point and its own bindings), `shaders/lib/` the shared code. A file states
-//! what it uses in a line `// import: a b c` (files of `lib/`, without the
-//! extension); a kernel is the generated prelude of constants shared with the
+//! point and its own bindings), `shaders/lib/` the shared code as the lecture
+//! reads it, and `shaders/fast/` the variants a device's tuning asks for. A
+//! file states what it uses in a line `// import: a b fast/c` (files of `lib/`,
+//! or with a folder of `shaders/`, without the extension); a kernel is the generated prelude of constants shared with the
 //! host (`gpu_types::wgsl_prelude`), the flags of the scene it is
 //! specialised to (`Specialization`) and of the device's tuning (`Tuning`),
 //! followed by the files its imports reach,
-//! each once, every file after the files it imports. So a kernel's file list
+//! each once, every file after the files it imports. A `fast/` file stands in
+//! for a `lib/` file where the tuning says (`Tuning::file`). So a kernel's file list
 //! is derived from the code, and holds only what the kernel uses. A line
 //! `// generated: NAME` becomes the dispatch on primitive kinds generated from
 //! glint-scene's registry (primitive_dispatch.rs), and its file imports every
@@ -16,7 +18,6 @@
 
 use std::path::{Path, PathBuf};
 
-use glint_scene::primitive_kinds::KINDS;
 use glint_scene::specialization::Specialization;
 
 use crate::primitive_dispatch;
@@ -41,9 +42,8 @@ sources![
     "kernels/probe.wgsl",
     "lib/types.wgsl",
     "lib/bindings.wgsl",
-    "lib/scene_buffers.wgsl",
-    "lib/scene_textures.wgsl",
-    "lib/uniform_tree.wgsl",
+    "lib/scene_arrays.wgsl",
+    "lib/bvh_records.wgsl",
     "lib/camera.wgsl",
     "lib/sample.wgsl",
     "lib/ray_frame.wgsl",
@@ -54,19 +54,31 @@ sources![
     "lib/cone.wgsl",
     "lib/primitive.wgsl",
     "lib/bvh.wgsl",
-    "lib/packet.wgsl",
-    "lib/eye_bvh.wgsl",
-    "lib/eye_tiles.wgsl",
+    "lib/eye_rays.wgsl",
+    "lib/eye_block.wgsl",
     "lib/reflect.wgsl",
     "lib/refract.wgsl",
     "lib/shadow.wgsl",
     "lib/checker.wgsl",
     "lib/shade.wgsl",
-    "lib/spread.wgsl",
+    "lib/band_order.wgsl",
     "lib/dispatch.wgsl",
     "lib/ray_tree.wgsl",
     "lib/diffuse_view.wgsl",
     "lib/display.wgsl",
+    "fast/scene_textures.wgsl",
+    "fast/bvh_textures.wgsl",
+    "fast/uniform_tree.wgsl",
+    "fast/rays4.wgsl",
+    "fast/ray_frame4.wgsl",
+    "fast/camera4.wgsl",
+    "fast/triangle4.wgsl",
+    "fast/plane4.wgsl",
+    "fast/polygon4.wgsl",
+    "fast/packet.wgsl",
+    "fast/eye_bvh.wgsl",
+    "fast/eye_tiles.wgsl",
+    "fast/spread.wgsl",
 ];
 
 /// The kernels, each one file of `shaders/kernels/` with one entry point.
@@ -139,18 +151,20 @@ impl Kernel {
     }
 }
 
-/// The `lib/` files `source` imports, as paths relative to `shaders/`. A
-/// file that asks for generated dispatch also imports every kind's file, in
-/// the order of names as import lines are written.
+/// The files `source` imports, as paths relative to `shaders/`: a name
+/// without a folder is in `lib/`. A file that asks for generated dispatch
+/// also imports the files of the kinds it calls, in the order of names as
+/// import lines are written.
 pub fn imports(source: &str) -> Vec<String> {
     let mut files: Vec<String> = source
         .lines()
         .filter_map(|line| line.trim().strip_prefix("// import:"))
         .flat_map(str::split_whitespace)
-        .map(|name| format!("lib/{name}.wgsl"))
+        .map(|name| if name.contains('/') { format!("{name}.wgsl") } else { format!("lib/{name}.wgsl") })
         .collect();
-    if source.lines().any(|line| line.trim().starts_with(primitive_dispatch::MARKER)) {
-        files.extend(KINDS.iter().map(|k| k.file.to_string()));
+    let pieces: Vec<&str> = source.lines().filter_map(|line| line.trim().strip_prefix(primitive_dispatch::MARKER)).map(str::trim).collect();
+    if !pieces.is_empty() {
+        files.extend(pieces.into_iter().flat_map(primitive_dispatch::files).map(str::to_string));
         files.sort();
         files.dedup();
     }
@@ -251,27 +265,11 @@ impl Composed {
     }
 }
 
-/// The import that stands for the file of [`SceneArrays::file`].
-pub const SCENE_ARRAYS_IMPORT: &str = "lib/scene_arrays.wgsl";
-
-/// The import that stands for the file that traces a 2×2 block's eye rays
-/// (`trace_eye_block`): through its eye tile's list when the kernel is
-/// specialised to eye tiles (the only file with subgroup operations, which a
-/// device without them would refuse), else through the BVH.
-pub const EYE_BLOCK_IMPORT: &str = "lib/eye_block.wgsl";
-
-/// The files [`EYE_BLOCK_IMPORT`] stands for: through the BVH, through eye tiles.
-pub const EYE_BLOCK_FILES: [&str; 2] = ["lib/eye_bvh.wgsl", "lib/eye_tiles.wgsl"];
-
-fn eye_block_file(tuning: Tuning) -> &'static str {
-    EYE_BLOCK_FILES[usize::from(tuning.eye_tiles)]
-}
-
 /// How the kernels read the scene's arrays (primitives, BVH records and
 /// grids, polygon points): `prim_at` and its siblings, declared alike by
-/// shaders/lib/scene_buffers.wgsl and scene_textures.wgsl, one of which a
-/// kernel's import `scene_arrays` composes, over the same bindings. A renderer
-/// reads one way (its bind group layout holds that kind of binding).
+/// shaders/lib/scene_arrays.wgsl and bvh_records.wgsl, or the textures of
+/// shaders/fast/, over the same bindings. A renderer reads one way (its bind
+/// group layout holds that kind of binding).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SceneArrays {
     /// Storage buffers: what optimised kernels read fastest. lavapipe fetches
@@ -287,15 +285,6 @@ pub enum SceneArrays {
 
 impl SceneArrays {
     pub const ALL: [SceneArrays; 2] = [SceneArrays::Buffers, SceneArrays::Textures];
-
-    /// The file that declares the scene's arrays read this way.
-    pub fn file(self) -> &'static str {
-        match self {
-            SceneArrays::Buffers => "lib/scene_buffers.wgsl",
-            SceneArrays::Textures => "lib/scene_textures.wgsl",
-        }
-    }
-
 }
 
 impl ShaderSource {
@@ -340,16 +329,11 @@ impl ShaderSource {
         Ok(Composed { source, files: starts })
     }
 
-    /// Appends `name` to `order` after everything it imports (depth first),
-    /// the import of the scene's arrays and that of the eye block's walk as
-    /// the files `tuning` chooses; `path` is the chain of imports being
-    /// followed, to report a cycle.
+    /// Appends `name`, or the file that `tuning` puts in its place, to
+    /// `order` after everything it imports (depth first); `path` is the chain
+    /// of imports being followed, to report a cycle.
     fn visit(&self, name: &str, tuning: Tuning, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
-        let name = match name {
-            SCENE_ARRAYS_IMPORT => tuning.arrays.file(),
-            EYE_BLOCK_IMPORT => eye_block_file(tuning),
-            name => name,
-        };
+        let name = tuning.file(name);
         if order.iter().any(|(done, _)| done == name) {
             return Ok(());
         }

@@ -1,7 +1,9 @@
 //! How a kernel is tuned for the device: the device's half of what a kernel
 //! is compiled for (glint-scene's `Specialization` is the scene's half). The
 //! device profile chooses it (profile.rs); every tuning traces the same bits
-//! (tests/packet.rs, tests/scene_arrays.rs).
+//! (tests/packet.rs, tests/scene_arrays.rs, tests/spread.rs). A tuning
+//! composes the files of shaders/lib/ as the lecture reads them, except where
+//! it puts a variant of shaders/fast/ in a file's place ([`STAND_INS`]).
 
 use glint_scene::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
 
@@ -24,10 +26,30 @@ pub struct Tuning {
     /// it has binned the scene for the view, on a device whose profile allows it.
     pub eye_tiles: bool,
     /// A dispatch's workgroups and a workgroup's invocations take their places
-    /// in the order of shaders/lib/spread.wgsl (for lavapipe's threads and
+    /// in the order of shaders/fast/spread.wgsl (for lavapipe's threads and
     /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
     pub spread: bool,
 }
+
+/// A file of shaders/fast/ that a tuning composes in place of one of
+/// shaders/lib/, declaring the same functions (tests/wgsl.rs checks).
+#[derive(Debug, Clone, Copy)]
+pub struct StandIn {
+    pub plain: &'static str,
+    pub fast: &'static str,
+    /// Whether a tuning composes `fast` in place of `plain`.
+    pub when: fn(Tuning) -> bool,
+}
+
+/// Every stand-in; the first that a tuning asks for takes the plain file's place.
+pub const STAND_INS: [StandIn; 6] = [
+    StandIn { plain: "lib/scene_arrays.wgsl", fast: "fast/scene_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
+    StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/uniform_tree.wgsl", when: |t| t.uniform_tree },
+    StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/bvh_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
+    StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_tiles.wgsl", when: |t| t.packets && t.eye_tiles },
+    StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_bvh.wgsl", when: |t| t.packets },
+    StandIn { plain: "lib/band_order.wgsl", fast: "fast/spread.wgsl", when: |t| t.spread },
+];
 
 impl Tuning {
     /// One ray at a time through the BVH, everything in storage buffers: the
@@ -62,6 +84,12 @@ impl Tuning {
         std::iter::once(arrays).chain(choices.iter().filter(|(on, _)| *on).map(|(_, name)| *name)).collect::<Vec<_>>().join("-")
     }
 
+    /// The file composed for the import of `name`: the stand-in this tuning
+    /// asks for, else `name` itself.
+    pub fn file(self, name: &str) -> &str {
+        STAND_INS.iter().find(|s| s.plain == name && (s.when)(self)).map_or(name, |s| s.fast)
+    }
+
     /// Whether its kernels need the device's subgroup operations.
     pub fn needs_subgroups(self) -> bool {
         self.eye_tiles
@@ -87,7 +115,7 @@ impl Tuning {
 
     /// The WGSL constants that carry it, appended to a kernel's prelude.
     pub fn wgsl(self) -> String {
-        format!("const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\nconst SPREAD: bool = {};\n", self.uniform_tree, self.packets, self.spread)
+        format!("const PACKETS: bool = {};\n", self.packets)
     }
 }
 
@@ -133,7 +161,18 @@ mod tests {
         scene.grids.push(GpuGrid::zeroed());
         assert!(!fits_uniform_tree(&scene), "one grid too many");
         let tuned = Tuning { uniform_tree: true, ..Tuning::PLAIN };
-        assert!(tuned.wgsl().contains("const UNIFORM_TREE: bool = true;") && tuned.wgsl().contains("const PACKETS: bool = false;"));
+        assert_eq!(tuned.file("lib/bvh_records.wgsl"), "fast/uniform_tree.wgsl");
+        assert_eq!(Tuning { arrays: SceneArrays::Textures, ..tuned }.file("lib/bvh_records.wgsl"), "fast/uniform_tree.wgsl");
+        assert_eq!(Tuning::PLAIN.file("lib/bvh_records.wgsl"), "lib/bvh_records.wgsl");
+    }
+
+    #[test]
+    fn the_plain_tuning_composes_the_lecture_files_and_every_stand_in_is_some_tunings() {
+        for s in STAND_INS {
+            assert!(s.plain.starts_with("lib/") && s.fast.starts_with("fast/"), "{s:?}");
+            assert_eq!(Tuning::PLAIN.file(s.plain), s.plain);
+            assert!(Tuning::all().iter().any(|t| t.file(s.plain) == s.fast), "no tuning composes {}", s.fast);
+        }
     }
 
     #[test]
