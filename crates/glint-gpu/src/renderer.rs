@@ -136,7 +136,9 @@ impl Renderer {
         Self::with_profile(device, queue, source, profile)
     }
 
-    fn with_profile(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
+    /// A renderer that makes the choices of `profile` (tests hold one profile's
+    /// choices to another's on the same device).
+    pub fn with_profile(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
         let arrays = profile.scene_arrays;
         let scene_layout = scene_bind_group_layout(&device, arrays);
         let eye_tiles_layout = eye_tiles::bind_group_layout(&device);
@@ -181,10 +183,10 @@ impl Renderer {
         &self.profile
     }
 
-    /// Single rays reading the scene as this renderer binds it: for kernels
-    /// that serve any scene (the probe's).
+    /// Single rays reading the scene as this renderer binds it, and the ray
+    /// tree the profile walks: for kernels that serve any scene (the probe's).
     pub(crate) fn plain_tuning(&self) -> Tuning {
-        Tuning { arrays: self.profile.scene_arrays, ..Tuning::PLAIN }
+        Tuning { arrays: self.profile.scene_arrays, one_walk_tree: self.profile.one_walk_tree, ..Tuning::PLAIN }
     }
 
     /// Creates the pipelines of `kernels` for `scene` now (those not made

@@ -64,6 +64,7 @@ sources![
     "lib/band_order.wgsl",
     "lib/dispatch.wgsl",
     "lib/ray_tree.wgsl",
+    "lib/secondary_rays.wgsl",
     "lib/diffuse_view.wgsl",
     "lib/display.wgsl",
     "fast/scene_textures.wgsl",
@@ -79,6 +80,7 @@ sources![
     "fast/eye_bvh.wgsl",
     "fast/eye_tiles.wgsl",
     "fast/spread.wgsl",
+    "fast/ray_tree.wgsl",
 ];
 
 /// The kernels, each one file of `shaders/kernels/` with one entry point.

@@ -29,6 +29,10 @@ pub struct Tuning {
     /// in the order of shaders/fast/spread.wgsl (for lavapipe's threads and
     /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
     pub spread: bool,
+    /// The trace and probe kernels walk the ray tree as one loop whose step is
+    /// one query, a ray of the tree or a shadow ray, through one call of the
+    /// BVH walk (shaders/fast/ray_tree.wgsl), which lavapipe compiles once.
+    pub one_walk_tree: bool,
 }
 
 /// A file of shaders/fast/ that a tuning composes in place of one of
@@ -42,30 +46,32 @@ pub struct StandIn {
 }
 
 /// Every stand-in; the first that a tuning asks for takes the plain file's place.
-pub const STAND_INS: [StandIn; 6] = [
+pub const STAND_INS: [StandIn; 7] = [
     StandIn { plain: "lib/scene_arrays.wgsl", fast: "fast/scene_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
     StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/uniform_tree.wgsl", when: |t| t.uniform_tree },
     StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/bvh_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
     StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_tiles.wgsl", when: |t| t.packets && t.eye_tiles },
     StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_bvh.wgsl", when: |t| t.packets },
     StandIn { plain: "lib/band_order.wgsl", fast: "fast/spread.wgsl", when: |t| t.spread },
+    StandIn { plain: "lib/ray_tree.wgsl", fast: "fast/ray_tree.wgsl", when: |t| t.one_walk_tree },
 ];
 
 impl Tuning {
     /// One ray at a time through the BVH, everything in storage buffers: the
     /// code as the lecture reads it, and what any device runs.
-    pub const PLAIN: Tuning = Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false, spread: false };
+    pub const PLAIN: Tuning =
+        Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false, spread: false, one_walk_tree: false };
 
     /// Every tuning a profile can choose (eye tiles only over storage
     /// buffers): for tests and dumps of every kernel.
     pub fn all() -> Vec<Tuning> {
         let mut all = Vec::new();
         for arrays in SceneArrays::ALL {
-            for bits in 0..16u32 {
-                let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+            for bits in 0..32u32 {
+                let [packets, uniform_tree, eye_tiles, spread, one_walk_tree] = [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
                 // Eye tiles hand SIMD groups blocks of one tile in spread order.
                 if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread });
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree });
                 }
             }
         }
@@ -79,8 +85,13 @@ impl Tuning {
             SceneArrays::Buffers => "buffers",
             SceneArrays::Textures => "textures",
         };
-        let choices =
-            [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles"), (self.spread, "spread")];
+        let choices = [
+            (self.packets, "packets"),
+            (self.uniform_tree, "uniform-tree"),
+            (self.eye_tiles, "eye-tiles"),
+            (self.spread, "spread"),
+            (self.one_walk_tree, "one-walk-tree"),
+        ];
         std::iter::once(arrays).chain(choices.iter().filter(|(on, _)| *on).map(|(_, name)| *name)).collect::<Vec<_>>().join("-")
     }
 
@@ -98,10 +109,12 @@ impl Tuning {
     /// What `kernel` is compiled with when a scene's kernels are tuned this
     /// way: only what changes its code, so that its renders share one
     /// pipeline (and one entry of a driver's disk cache) whatever else
-    /// differs. Only the primary kernel traces packets.
+    /// differs. Only the primary kernel traces packets, and only the trace
+    /// and probe kernels walk the ray tree.
     pub fn for_kernel(self, kernel: Kernel) -> Tuning {
         match kernel {
-            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, ..self },
+            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, one_walk_tree: false, ..self },
+            Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, one_walk_tree: false, ..self },
             _ if kernel.is_specialised() => Tuning { packets: false, eye_tiles: false, ..self },
             _ => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
         }
@@ -177,10 +190,12 @@ mod tests {
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
-        assert_eq!(fast.for_kernel(Kernel::Primary), fast);
+        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true, one_walk_tree: true };
+        assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, ..fast });
         assert_eq!(fast.block_side(Kernel::Primary), 2);
-        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, spread: true, ..Tuning::PLAIN });
+        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, spread: true, one_walk_tree: true, ..Tuning::PLAIN });
+        assert_eq!(fast.for_kernel(Kernel::Probe), fast.for_kernel(Kernel::Trace));
+        assert_eq!(fast.for_kernel(Kernel::Diffuse), Tuning { uniform_tree: true, spread: true, ..Tuning::PLAIN });
         assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
         assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
         let no_packets = Tuning { packets: false, ..fast };
