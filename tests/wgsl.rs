@@ -234,6 +234,38 @@ fn imports_are_exactly_what_each_file_uses() {
     assert!(!primary.source.contains("fn diffuse_only"), "the primary kernel carries shadow rays");
 }
 
+/// The words of a SIMD machine's lanes, of drivers and of lavapipe's tuning,
+/// which the lecture's files leave to shaders/fast/ and docs/decisions/.
+const TUNING_WORDS: [&str; 8] = ["lane", "lanes", "simd", "driver", "lavapipe", "llvm", "packet", "packets"];
+
+/// The files of ARCHITECTURE.md's table of lecture concepts hold the code as
+/// the lecture reads it, one ray at a time: no four-wide twin (`fn …4(`) and
+/// no word of lanes, drivers or lavapipe.
+#[test]
+fn concept_files_hold_the_one_ray_code() {
+    let architecture = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("ARCHITECTURE.md")).unwrap();
+    let table = architecture.split("## Where each lecture concept lives").nth(1).and_then(|s| s.split("\n## ").next()).unwrap();
+    let files: BTreeSet<String> = table
+        .lines()
+        .filter_map(|row| row.strip_prefix('|')?.split('|').nth(1))
+        .flat_map(|cell| cell.split('`').skip(1).step_by(2).filter(|name| name.ends_with(".wgsl")).map(|name| format!("lib/{name}")).collect::<Vec<_>>())
+        .collect();
+    for concept in ["camera", "sphere", "triangle", "polygon", "cone", "plane", "shade", "shadow", "reflect", "refract", "ray_tree", "bvh"] {
+        assert!(files.contains(&format!("lib/{concept}.wgsl")), "ARCHITECTURE.md's concept table lacks {concept}.wgsl: {files:?}");
+    }
+    for file in &files {
+        assert!(SOURCES.contains(&file.as_str()), "ARCHITECTURE.md names shaders/{file}, which is not embedded");
+        let source = std::fs::read_to_string(ShaderSource::source_dir().join(file)).unwrap();
+        for (i, line) in source.lines().enumerate() {
+            let four_wide = line.split("fn ").skip(1).any(|rest| rest.split('(').next().is_some_and(|name| name.ends_with('4')));
+            assert!(!four_wide, "shaders/{file}:{}: a four-wide function belongs in shaders/fast/: {line}", i + 1);
+            let lower = line.to_lowercase();
+            let word = lower.split(|c: char| !c.is_alphanumeric()).find(|w| TUNING_WORDS.contains(w));
+            assert!(word.is_none(), "shaders/{file}:{}: \"{}\" belongs in shaders/fast/ or docs/decisions/: {line}", i + 1, word.unwrap_or_default());
+        }
+    }
+}
+
 #[test]
 fn errors_name_the_file_and_line() {
     let dir = tempfile::tempdir().unwrap();
