@@ -1,6 +1,6 @@
-//! Ray packets (shaders/lib/packet.wgsl): with `Tuning::packets` the
+//! Ray packets (shaders/fast/packet.wgsl): with `Tuning::packets` the
 //! primary kernel traces the eye rays of each 2×2 block of pixels together,
-//! through the BVH or through their eye tile's list (shaders/lib/eye_tiles.wgsl),
+//! through the BVH or through their eye tile's list (shaders/fast/eye_tiles.wgsl),
 //! and each ray must get exactly the hit it gets alone. Every data view and
 //! the ray counts of both walks are held to the kernel that traces single
 //! rays, bit for bit, for every kind of primitive, both projections, and

@@ -682,13 +682,13 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
     pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
 }
 
-/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl
-/// and scene_buffers.wgsl or scene_textures.wgsl):
+/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl,
+/// scene_arrays.wgsl and bvh_records.wgsl, or their textures in shaders/fast/):
 /// the scene uniforms, the scene's arrays (primitives, BVH records, polygon
 /// points and BVH grids) as storage buffers or textures, as `arrays` says,
 /// the materials' and lights' uniform buffers, the accumulation image, the ray
 /// counts, the dispatch parameters and the BVH's records and grids again in
-/// uniform buffers (shaders/lib/uniform_tree.wgsl).
+/// uniform buffers (shaders/fast/uniform_tree.wgsl).
 fn scene_bind_group_layout(device: &wgpu::Device, arrays: SceneArrays) -> wgpu::BindGroupLayout {
     let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
         binding,
