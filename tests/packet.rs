@@ -55,6 +55,9 @@ fn packets_of_every_primitive_kind_hit_what_single_rays_hit() {
     for seed in 0..4 {
         misses += assert_packets_trace_as_single_rays(&glint_reference::random_scene(seed), &format!("random scene {seed}"));
     }
+    // Every kind in one scene, smooth triangles and a concave polygon among them.
+    let gallery = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/gallery/primitives.toml");
+    misses += assert_packets_trace_as_single_rays(&glint_scene::load(&gallery).unwrap_or_else(|e| panic!("{e}")), "primitives.toml");
     assert!(misses > 0, "no eye ray missed: packets of hits and misses were not tried");
 }
 

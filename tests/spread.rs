@@ -162,15 +162,18 @@ fn every_four_consecutive_invocations_trace_a_2x2_block() {
 }
 
 /// The plain profile's row order traces the pixels and counts the rays that
-/// spread order does: for the trace, primary and diffuse kernels, single rays
-/// and packets, in an image whose workgroups overhang its edges.
+/// spread order does: for the trace, primary and diffuse kernels in every
+/// view, single rays and packets, in an image whose workgroups overhang its
+/// edges, over every kind of primitive, shadows, reflection and refraction.
 #[test]
 fn row_order_traces_what_spread_order_traces() {
     let renderer = support::renderer();
-    for name in ["tetra:2", "balls:1"] {
-        let scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
+    let scenes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    for name in ["spd:tetra:2", "spd:balls:1", "gallery/primitives.toml", "showcase.toml"] {
+        let path = if name.starts_with("spd:") { name.into() } else { scenes.join(name) };
+        let scene = glint_scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let mut prepared = renderer.prepare(&scene, 45, 29, glint_gpu::Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
-        for view in [View::Shaded, View::Depth, View::Diffuse] {
+        for view in View::ALL {
             for packets in [false, true] {
                 let options = glint_gpu::RenderOptions { view, spp: 2, ..Default::default() };
                 let mut render = |spread| {

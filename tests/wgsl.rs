@@ -33,6 +33,17 @@ fn every_kernel_validates_in_every_tuning() {
     }
 }
 
+/// The plain tuning, which every device but lavapipe gets, composes the
+/// lecture's files alone: nothing of shaders/fast/.
+#[test]
+fn the_plain_tuning_composes_no_fast_file() {
+    for kernel in Kernel::ALL {
+        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
+        let fast: Vec<&String> = composed.files.iter().map(|(name, ..)| name).filter(|name| name.starts_with("fast/")).collect();
+        assert!(fast.is_empty(), "{kernel:?}: {fast:?}");
+    }
+}
+
 /// Every kernel that intersects primitives validates for every specialisation
 /// a scene can need, plain and tuned as lavapipe's, and only those kernels are
 /// compiled per scene.

@@ -163,6 +163,19 @@ mod tests {
         adapter(&format!("llvmpipe (LLVM 19.1.7, {bits} bits)"), wgpu::DeviceType::Cpu, bits / 32)
     }
 
+    fn empty_scene() -> GpuScene {
+        GpuScene {
+            prims: Vec::new(),
+            nodes: Vec::new(),
+            grids: Vec::new(),
+            bvh_root: 0,
+            materials: Vec::new(),
+            lights: Vec::new(),
+            points: Vec::new(),
+            light_count: 0,
+        }
+    }
+
     const GPUS: [(&str, wgpu::DeviceType, u32); 3] = [
         ("NVIDIA GeForce RTX 4090", wgpu::DeviceType::DiscreteGpu, 32),
         ("AMD Radeon RX 7900 XTX (RADV NAVI31)", wgpu::DeviceType::DiscreteGpu, 64),
@@ -185,6 +198,7 @@ mod tests {
                 one_walk_tree: true,
             };
             assert_eq!(optimised, want);
+            assert!(optimised.tuning(&empty_scene()).one_walk_tree, "lavapipe walks the ray tree in one walk");
             let quick = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, true);
             let want = DeviceProfile {
                 kernels: Some(CompiledKernels { quick: true, vector_bits: Some(bits) }),
@@ -217,6 +231,7 @@ mod tests {
                     one_walk_tree: false,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
+                assert_eq!(profile.tuning(&empty_scene()), Tuning::PLAIN, "{name}: the lecture's code, one ray at a time");
                 assert_eq!(profile.describe(), "plain profile");
                 assert!(!profile.packets_for(u64::MAX));
             }
