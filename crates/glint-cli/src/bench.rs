@@ -244,6 +244,7 @@ mod tests {
             eye_tiles: false,
             resolves_on_host: false,
             spread: false,
+            one_walk_tree: false,
         };
         for view in [View::Depth, View::Shaded] {
             for packets in [false, true] {

@@ -33,7 +33,7 @@ pub use lavapipe::{
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
 pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
-pub use tuning::Tuning;
+pub use tuning::{StandIn, Tuning, STAND_INS};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
