@@ -1,6 +1,6 @@
-//! Ray packets (shaders/lib/packet.wgsl): with `Tuning::packets` the
+//! Ray packets (shaders/fast/packet.wgsl): with `Tuning::packets` the
 //! primary kernel traces the eye rays of each 2×2 block of pixels together,
-//! through the BVH or through their eye tile's list (shaders/lib/eye_tiles.wgsl),
+//! through the BVH or through their eye tile's list (shaders/fast/eye_tiles.wgsl),
 //! and each ray must get exactly the hit it gets alone. Every data view and
 //! the ray counts of both walks are held to the kernel that traces single
 //! rays, bit for bit, for every kind of primitive, both projections, and
@@ -55,6 +55,9 @@ fn packets_of_every_primitive_kind_hit_what_single_rays_hit() {
     for seed in 0..4 {
         misses += assert_packets_trace_as_single_rays(&glint_reference::random_scene(seed), &format!("random scene {seed}"));
     }
+    // Every kind in one scene, smooth triangles and a concave polygon among them.
+    let gallery = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/gallery/primitives.toml");
+    misses += assert_packets_trace_as_single_rays(&glint_scene::load(&gallery).unwrap_or_else(|e| panic!("{e}")), "primitives.toml");
     assert!(misses > 0, "no eye ray missed: packets of hits and misses were not tried");
 }
 

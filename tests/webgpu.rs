@@ -86,7 +86,15 @@ fn every_kernel_validates_under_webgpu_capabilities_and_default_limits() {
     for variant in KernelVariant::all() {
         assert_portable(variant.kernel, Specialization::ALL, variant.tuning);
     }
-    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE };
+    let lavapipe = Tuning {
+        arrays: SceneArrays::Buffers,
+        packets: true,
+        uniform_tree: true,
+        eye_tiles: true,
+        spread: true,
+        one_walk_tree: true,
+        workgroups: WorkgroupSizes::LAVAPIPE,
+    };
     let kinds = (0..2 * (ALL_KINDS + 1)).map(|bits| {
         Specialization { kinds: bits & ALL_KINDS, secondary_rays: bits > ALL_KINDS, ..Specialization::ALL }
     });

@@ -244,6 +244,7 @@ mod tests {
             eye_tiles: false,
             resolves_on_host: false,
             spread: false,
+            one_walk_tree: false,
             workgroups: WorkgroupSizes::PLAIN,
         };
         for view in [View::Depth, View::Shaded] {

@@ -124,7 +124,7 @@ shared_constants! {
 
     /// The scene's arrays (primitives, BVH records and grids, polygon points)
     /// reach the kernels as textures of this many 16-byte texels a row
-    /// (`prim_at` and its siblings in shaders/lib/scene_textures.wgsl): a software
+    /// (`prim_at` and its siblings in shaders/fast/scene_textures.wgsl): a software
     /// rasteriser fetches a texel per lane without the branch that a storage buffer's
     /// bounds check takes per lane and component
     /// (docs/decisions/034-scene-textures.md). A power of two, divided by with a shift.

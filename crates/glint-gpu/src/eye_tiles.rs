@@ -1,6 +1,6 @@
 //! Eye tiles on the device (binning.rs builds them on the host): the lists
 //! and the primitives the primary kernel's packets read them with, bound as
-//! group 1 (shaders/lib/eye_tiles.wgsl). They belong to one view, so they are
+//! group 1 (shaders/fast/eye_tiles.wgsl). They belong to one view, so they are
 //! bound apart from the scene and rebuilt when the camera moves.
 
 pub mod binning;

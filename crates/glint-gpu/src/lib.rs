@@ -33,8 +33,8 @@ pub use lavapipe::{
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
 pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
-pub use tuning::{Tuning, WorkgroupSizes};
 pub use eye_tiles::binning::Footprints;
+pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,

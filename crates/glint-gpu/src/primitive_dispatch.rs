@@ -24,6 +24,12 @@ pub fn piece(name: &str) -> Option<String> {
     }
 }
 
+/// The files of the kinds whose functions the piece called `name` calls: every
+/// kind's, but the packet test's own four-wide tests are its file's imports.
+pub fn files(name: &str) -> Vec<&'static str> {
+    KINDS.iter().filter(|k| name != "packet_test" || k.packet_intersect.is_none()).map(|k| k.file).collect()
+}
+
 fn is(k: &PrimitiveKind) -> String {
     format!("{} && kind == {}", k.flag, k.code_name)
 }

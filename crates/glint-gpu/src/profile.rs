@@ -70,6 +70,10 @@ pub struct DeviceProfile {
     /// lavapipe hands each thread a run of workgroups and runs SIMD groups of
     /// consecutive invocations; eye tiles need a SIMD group in one tile.
     pub spread: bool,
+    /// Whether the ray tree is walked through one call of the BVH walk
+    /// (`Tuning::one_walk_tree`): lavapipe inlines each call, and compiles
+    /// each copy (docs/decisions/024-one-walk-in-the-trace-kernel.md).
+    pub one_walk_tree: bool,
     /// The workgroups of the kernels that trace row bands.
     pub workgroups: WorkgroupSizes,
 }
@@ -98,6 +102,7 @@ impl DeviceProfile {
             eye_tiles,
             resolves_on_host: info.device_type == wgpu::DeviceType::Cpu,
             spread: kernels.is_some() || eye_tiles,
+            one_walk_tree: kernels.is_some(),
             workgroups: if kernels.is_some() { WorkgroupSizes::LAVAPIPE } else { WorkgroupSizes::PLAIN },
         }
     }
@@ -123,6 +128,7 @@ impl DeviceProfile {
             uniform_tree: self.uniform_tree && fits_uniform_tree(scene),
             eye_tiles: false,
             spread: self.spread,
+            one_walk_tree: self.one_walk_tree,
             workgroups: self.workgroups,
         }
     }
@@ -161,6 +167,19 @@ pub(crate) mod tests {
         adapter(&format!("llvmpipe (LLVM 19.1.7, {bits} bits)"), wgpu::DeviceType::Cpu, bits / 32)
     }
 
+    fn empty_scene() -> GpuScene {
+        GpuScene {
+            prims: Vec::new(),
+            nodes: Vec::new(),
+            grids: Vec::new(),
+            bvh_root: 0,
+            materials: Vec::new(),
+            lights: Vec::new(),
+            points: Vec::new(),
+            light_count: 0,
+        }
+    }
+
     const GPUS: [(&str, wgpu::DeviceType, u32); 3] = [
         ("NVIDIA GeForce RTX 4090", wgpu::DeviceType::DiscreteGpu, 32),
         ("AMD Radeon RX 7900 XTX (RADV NAVI31)", wgpu::DeviceType::DiscreteGpu, 64),
@@ -180,9 +199,11 @@ pub(crate) mod tests {
                 eye_tiles: true,
                 resolves_on_host: true,
                 spread: true,
+                one_walk_tree: true,
                 workgroups: WorkgroupSizes::LAVAPIPE,
             };
             assert_eq!(optimised, want);
+            assert!(optimised.tuning(&empty_scene()).one_walk_tree, "lavapipe walks the ray tree in one walk");
             let quick = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, true);
             let want = DeviceProfile {
                 kernels: Some(CompiledKernels { quick: true, vector_bits: Some(bits) }),
@@ -212,9 +233,11 @@ pub(crate) mod tests {
                     eye_tiles: false,
                     resolves_on_host: false,
                     spread: false,
+                    one_walk_tree: false,
                     workgroups: WorkgroupSizes::PLAIN,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
+                assert_eq!(profile.tuning(&empty_scene()), Tuning::PLAIN, "{name}: the lecture's code, one ray at a time");
                 assert_eq!(profile.describe(), "plain profile");
                 assert!(!profile.packets_for(u64::MAX));
             }
@@ -226,7 +249,8 @@ pub(crate) mod tests {
         let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
         let profile = DeviceProfile::of(&small_groups, wgpu::Features::SUBGROUP, true);
         assert!(profile.eye_tiles && profile.packets && profile.packets_for(1) && profile.spread, "{profile:?}");
-        assert!(!profile.uniform_tree && profile.scene_arrays == SceneArrays::Buffers && profile.workgroups == WorkgroupSizes::PLAIN);
+        assert!(!profile.uniform_tree && !profile.one_walk_tree && profile.scene_arrays == SceneArrays::Buffers);
+        assert_eq!(profile.workgroups, WorkgroupSizes::PLAIN);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
     }
 

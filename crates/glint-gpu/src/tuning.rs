@@ -1,7 +1,9 @@
 //! How a kernel is tuned for the device: the device's half of what a kernel
 //! is compiled for (glint-encoding's `Specialization` is the scene's half). The
 //! device profile chooses it (profile.rs); every tuning traces the same bits
-//! (tests/packet.rs, tests/scene_arrays.rs).
+//! (tests/packet.rs, tests/scene_arrays.rs, tests/spread.rs). A tuning
+//! composes the files of shaders/lib/ as the lecture reads them, except where
+//! it puts a variant of shaders/fast/ in a file's place ([`STAND_INS`]).
 
 use glint_encoding::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
 
@@ -24,9 +26,13 @@ pub struct Tuning {
     /// it has binned the scene for the view, on a device whose profile allows it.
     pub eye_tiles: bool,
     /// A dispatch's workgroups and a workgroup's invocations take their places
-    /// in the order of shaders/lib/spread.wgsl (for lavapipe's threads and
+    /// in the order of shaders/fast/spread.wgsl (for lavapipe's threads and
     /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
     pub spread: bool,
+    /// The trace and probe kernels walk the ray tree as one loop whose step is
+    /// one query, a ray of the tree or a shadow ray, through one call of the
+    /// BVH walk (shaders/fast/ray_tree.wgsl), which lavapipe compiles once.
+    pub one_walk_tree: bool,
     /// The workgroups of the kernels that trace row bands.
     pub workgroups: WorkgroupSizes,
 }
@@ -64,6 +70,27 @@ impl WorkgroupSizes {
     }
 }
 
+/// A file of shaders/fast/ that a tuning composes in place of one of
+/// shaders/lib/, declaring the same functions (tests/wgsl.rs checks).
+#[derive(Debug, Clone, Copy)]
+pub struct StandIn {
+    pub plain: &'static str,
+    pub fast: &'static str,
+    /// Whether a tuning composes `fast` in place of `plain`.
+    pub when: fn(Tuning) -> bool,
+}
+
+/// Every stand-in; the first that a tuning asks for takes the plain file's place.
+pub const STAND_INS: [StandIn; 7] = [
+    StandIn { plain: "lib/scene_arrays.wgsl", fast: "fast/scene_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
+    StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/uniform_tree.wgsl", when: |t| t.uniform_tree },
+    StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/bvh_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
+    StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_tiles.wgsl", when: |t| t.packets && t.eye_tiles },
+    StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_bvh.wgsl", when: |t| t.packets },
+    StandIn { plain: "lib/band_order.wgsl", fast: "fast/spread.wgsl", when: |t| t.spread },
+    StandIn { plain: "lib/ray_tree.wgsl", fast: "fast/ray_tree.wgsl", when: |t| t.one_walk_tree },
+];
+
 impl Tuning {
     /// One ray at a time through the BVH, everything in storage buffers: the
     /// code as the lecture reads it, and what any device runs.
@@ -73,6 +100,7 @@ impl Tuning {
         uniform_tree: false,
         eye_tiles: false,
         spread: false,
+        one_walk_tree: false,
         workgroups: WorkgroupSizes::PLAIN,
     };
 
@@ -82,11 +110,11 @@ impl Tuning {
     pub fn all() -> Vec<Tuning> {
         let mut all = Vec::new();
         for arrays in SceneArrays::ALL {
-            for bits in 0..16u32 {
-                let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+            for bits in 0..32u32 {
+                let [packets, uniform_tree, eye_tiles, spread, one_walk_tree] = [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
                 // Eye tiles hand SIMD groups blocks of one tile in spread order.
                 if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, workgroups: WorkgroupSizes::LAVAPIPE });
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree, workgroups: WorkgroupSizes::LAVAPIPE });
                 }
             }
         }
@@ -105,11 +133,22 @@ impl Tuning {
             SceneArrays::Buffers => "buffers",
             SceneArrays::Textures => "textures",
         };
-        let choices =
-            [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles"), (self.spread, "spread")];
+        let choices = [
+            (self.packets, "packets"),
+            (self.uniform_tree, "uniform-tree"),
+            (self.eye_tiles, "eye-tiles"),
+            (self.spread, "spread"),
+            (self.one_walk_tree, "one-walk-tree"),
+        ];
         let chosen = choices.iter().filter(|(on, _)| *on).map(|(_, name)| name.to_string());
         let workgroups = (self.workgroups != WorkgroupSizes::PLAIN).then(|| self.workgroups.name());
         std::iter::once(arrays.to_string()).chain(chosen).chain(workgroups).collect::<Vec<_>>().join("-")
+    }
+
+    /// The file composed for the import of `name`: the stand-in this tuning
+    /// asks for, else `name` itself.
+    pub fn file(self, name: &str) -> &str {
+        STAND_INS.iter().find(|s| s.plain == name && (s.when)(self)).map_or(name, |s| s.fast)
     }
 
     /// Whether its kernels need the device's subgroup operations.
@@ -120,12 +159,14 @@ impl Tuning {
     /// What `kernel` is compiled with when a scene's kernels are tuned this
     /// way: only what changes its code, so that its renders share one
     /// pipeline (and one entry of a driver's disk cache) whatever else
-    /// differs. Only the primary kernel traces packets, and only the kernels
-    /// that trace row bands have their workgroup sizes.
+    /// differs. Only the primary kernel traces packets, only the trace and
+    /// probe kernels walk the ray tree, and only the kernels that trace row
+    /// bands have their workgroup sizes.
     pub fn for_kernel(self, kernel: Kernel) -> Tuning {
         match kernel {
-            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, ..self },
-            Kernel::Trace | Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, ..self },
+            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, one_walk_tree: false, ..self },
+            Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, one_walk_tree: false, ..self },
+            Kernel::Trace => Tuning { packets: false, eye_tiles: false, ..self },
             Kernel::Probe => Tuning { packets: false, eye_tiles: false, workgroups: WorkgroupSizes::PLAIN, ..self },
             Kernel::Resolve | Kernel::Present => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
         }
@@ -147,9 +188,9 @@ impl Tuning {
     pub fn wgsl(self) -> String {
         let WorkgroupSizes { width, band_height, primary_height } = self.workgroups;
         format!(
-            "const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\nconst SPREAD: bool = {};\n\
+            "const PACKETS: bool = {};\n\
              const BAND_WORKGROUP_WIDTH: u32 = {width}u;\nconst BAND_WORKGROUP_HEIGHT: u32 = {band_height}u;\nconst PRIMARY_WORKGROUP_HEIGHT: u32 = {primary_height}u;\n",
-            self.uniform_tree, self.packets, self.spread
+            self.packets
         )
     }
 }
@@ -196,17 +237,37 @@ mod tests {
         scene.grids.push(GpuGrid::zeroed());
         assert!(!fits_uniform_tree(&scene), "one grid too many");
         let tuned = Tuning { uniform_tree: true, ..Tuning::PLAIN };
-        assert!(tuned.wgsl().contains("const UNIFORM_TREE: bool = true;") && tuned.wgsl().contains("const PACKETS: bool = false;"));
+        assert_eq!(tuned.file("lib/bvh_records.wgsl"), "fast/uniform_tree.wgsl");
+        assert_eq!(Tuning { arrays: SceneArrays::Textures, ..tuned }.file("lib/bvh_records.wgsl"), "fast/uniform_tree.wgsl");
+        assert_eq!(Tuning::PLAIN.file("lib/bvh_records.wgsl"), "lib/bvh_records.wgsl");
+    }
+
+    #[test]
+    fn the_plain_tuning_composes_the_lecture_files_and_every_stand_in_is_some_tunings() {
+        for s in STAND_INS {
+            assert!(s.plain.starts_with("lib/") && s.fast.starts_with("fast/"), "{s:?}");
+            assert_eq!(Tuning::PLAIN.file(s.plain), s.plain);
+            assert!(Tuning::all().iter().any(|t| t.file(s.plain) == s.fast), "no tuning composes {}", s.fast);
+        }
     }
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE };
-        assert_eq!(fast.for_kernel(Kernel::Primary), fast);
+        let fast = Tuning {
+            arrays: SceneArrays::Buffers,
+            packets: true,
+            uniform_tree: true,
+            eye_tiles: true,
+            spread: true,
+            one_walk_tree: true,
+            workgroups: WorkgroupSizes::LAVAPIPE,
+        };
+        assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, ..fast });
         assert_eq!(fast.block_side(Kernel::Primary), 2);
-        let trace = Tuning { uniform_tree: true, spread: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
+        let trace = Tuning { uniform_tree: true, spread: true, one_walk_tree: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
         assert_eq!(fast.for_kernel(Kernel::Trace), trace);
         assert_eq!(fast.for_kernel(Kernel::Probe), Tuning { workgroups: WorkgroupSizes::PLAIN, ..trace }, "the probe traces no bands");
+        assert_eq!(fast.for_kernel(Kernel::Diffuse), Tuning { one_walk_tree: false, ..trace });
         assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
         assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
         let no_packets = Tuning { packets: false, ..fast };

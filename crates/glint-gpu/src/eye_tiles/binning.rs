@@ -7,7 +7,7 @@
 //! Why: a software rasteriser runs a SIMD group's lanes through the BVH each on its own
 //! path, loading every node and primitive once per lane. The lanes of a tile's
 //! SIMD group instead walk one short list together, so each primitive is loaded
-//! once for all of them (shaders/lib/eye_tiles.wgsl), and the walk stops when
+//! once for all of them (shaders/fast/eye_tiles.wgsl), and the walk stops when
 //! every ray has hit something nearer than the next primitive can be.
 //!
 //! A primitive is listed in every tile with a pixel centre in its projection's
