@@ -6,7 +6,7 @@
 mod support;
 
 use glint_gpu::shaders::SceneArrays;
-use glint_gpu::{Acceleration, GpuError, Tuning, WorkgroupSizes, PACKET_EYE_RAYS};
+use glint_gpu::{Acceleration, GpuError, Tuning, PACKET_EYE_RAYS};
 
 #[test]
 fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
@@ -24,15 +24,7 @@ fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
 
     let scene = glint_scene::load(std::path::Path::new("spd:tetra:2")).unwrap();
     let prepared = support::renderer().prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
-    let tuned = Tuning {
-        arrays: SceneArrays::Buffers,
-        packets: true,
-        uniform_tree: true,
-        eye_tiles: true,
-        spread: true,
-        one_walk_tree: true,
-        workgroups: WorkgroupSizes::LAVAPIPE,
-    };
+    let tuned = Tuning::LAVAPIPE;
     assert_eq!(prepared.buffers.tuning, tuned);
 }
 

@@ -13,8 +13,8 @@ use glint_encoding::gpu_types::View;
 use glint_encoding::primitive_kinds::ALL_KINDS;
 use glint_encoding::specialization::Specialization;
 use glint_gpu::kernel_dump::{self, KernelVariant};
-use glint_gpu::shaders::{Kernel, SceneArrays, ShaderSource};
-use glint_gpu::{Tuning, WorkgroupSizes};
+use glint_gpu::shaders::{Kernel, ShaderSource};
+use glint_gpu::Tuning;
 
 /// What naga may accept for a kernel on a WebGPU device: core WebGPU, plus
 /// subgroup operations for the kernels that need the `subgroups` feature.
@@ -86,15 +86,7 @@ fn every_kernel_validates_under_webgpu_capabilities_and_default_limits() {
     for variant in KernelVariant::all() {
         assert_portable(variant.kernel, Specialization::ALL, variant.tuning);
     }
-    let lavapipe = Tuning {
-        arrays: SceneArrays::Buffers,
-        packets: true,
-        uniform_tree: true,
-        eye_tiles: true,
-        spread: true,
-        one_walk_tree: true,
-        workgroups: WorkgroupSizes::LAVAPIPE,
-    };
+    let lavapipe = Tuning::LAVAPIPE;
     let kinds = (0..2 * (ALL_KINDS + 1)).map(|bits| {
         Specialization { kinds: bits & ALL_KINDS, secondary_rays: bits > ALL_KINDS, ..Specialization::ALL }
     });

@@ -11,7 +11,7 @@ use glint_encoding::gpu_types::{
 };
 use glint_encoding::primitive_kinds::{ALL_KINDS, KINDS};
 use glint_encoding::specialization::Specialization;
-use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, SOURCES};
+use glint_gpu::shaders::{expand, imports, Kernel, ShaderSource, SOURCES};
 use glint_gpu::{Tuning, WorkgroupSizes, STAND_INS};
 
 fn module(kernel: Kernel) -> naga::Module {
@@ -49,15 +49,7 @@ fn the_plain_tuning_composes_no_fast_file() {
 /// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
-    let lavapipe = Tuning {
-        arrays: SceneArrays::Buffers,
-        packets: true,
-        uniform_tree: true,
-        eye_tiles: false,
-        spread: true,
-        one_walk_tree: true,
-        workgroups: WorkgroupSizes::LAVAPIPE,
-    };
+    let lavapipe = Tuning { eye_tiles: false, ..Tuning::LAVAPIPE };
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, ..)| name == "lib/primitive.wgsl");

@@ -104,6 +104,18 @@ impl Tuning {
         workgroups: WorkgroupSizes::PLAIN,
     };
 
+    /// Every choice of lavapipe's profile at once, eye tiles included: what
+    /// tests hold the plain tuning's bits to.
+    pub const LAVAPIPE: Tuning = Tuning {
+        arrays: SceneArrays::Buffers,
+        packets: true,
+        uniform_tree: true,
+        eye_tiles: true,
+        spread: true,
+        one_walk_tree: true,
+        workgroups: WorkgroupSizes::LAVAPIPE,
+    };
+
     /// Every tuning a profile can choose, and every one tests set on
     /// lavapipe (eye tiles only over storage buffers): for tests and dumps of
     /// every kernel.
@@ -253,15 +265,7 @@ mod tests {
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning {
-            arrays: SceneArrays::Buffers,
-            packets: true,
-            uniform_tree: true,
-            eye_tiles: true,
-            spread: true,
-            one_walk_tree: true,
-            workgroups: WorkgroupSizes::LAVAPIPE,
-        };
+        let fast = Tuning::LAVAPIPE;
         assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, ..fast });
         assert_eq!(fast.block_side(Kernel::Primary), 2);
         let trace = Tuning { uniform_tree: true, spread: true, one_walk_tree: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
