@@ -4,8 +4,8 @@
 
 mod support;
 
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, Image, RayStats, RenderOptions};
-use glint_scene::gpu_types::View;
 use glint_scene::Scene;
 use support::{render_options, render_with};
 

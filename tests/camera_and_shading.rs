@@ -4,8 +4,8 @@
 mod support;
 
 use glam::DVec3;
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::View;
 use glint_scene::Ray;
 use support::{assert_close, parse, render, render_options};
 
@@ -286,7 +286,7 @@ shininess = 8
 
 #[test]
 fn the_last_of_the_most_materials_a_scene_may_have_reaches_the_kernels() {
-    use glint_scene::gpu_types::MAX_MATERIALS;
+    use glint_encoding::gpu_types::MAX_MATERIALS;
     let mut scene = parse(&format!(
         "{HEADER}\n[ambient]\nintensity = 1\n[material.white]\ncolor = 1\nka = 1\nkd = 0\n\
          [[object]]\ntype = \"sphere\"\ncenter = [-1.2, 0.5, 0]\nradius = 0.5\nmaterial = \"white\"\n\

@@ -17,13 +17,14 @@ fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
     let kernels = profile.kernels.expect("lavapipe's kernels are described");
     assert!(!kernels.quick && kernels.vector_bits.is_some(), "{kernels:?}");
     assert_eq!(profile.scene_arrays, SceneArrays::Buffers);
-    assert!(profile.packets && profile.uniform_tree && profile.eye_tiles && profile.resolves_on_host && profile.spread, "{profile:?}");
+    assert!(profile.packets && profile.uniform_tree && profile.eye_tiles && profile.resolves_on_host && profile.spread && profile.one_walk_tree,
+        "{profile:?}");
     assert_eq!(profile.packet_eye_rays, PACKET_EYE_RAYS);
     assert!(profile.describe().starts_with("lavapipe profile"), "{}", profile.describe());
 
     let scene = glint_scene::load(std::path::Path::new("spd:tetra:2")).unwrap();
     let prepared = support::renderer().prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
-    let tuned = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
+    let tuned = Tuning::LAVAPIPE;
     assert_eq!(prepared.buffers.tuning, tuned);
 }
 

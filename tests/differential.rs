@@ -5,8 +5,8 @@
 mod support;
 
 use std::io::Write;
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::View;
 
 const SEEDS: u64 = 20;
 /// Colour tolerance per channel (linear radiance), relative above 1.

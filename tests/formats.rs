@@ -4,8 +4,8 @@
 mod support;
 
 use glam::DVec3;
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::View;
 use support::{assert_close, parse, render, render_options};
 
 /// Every pixel of `image` whose classification by `inside` differs must be on

@@ -3,8 +3,8 @@
 mod support;
 
 use glam::DVec3;
+use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::{Acceleration, PngBits, RenderOptions};
-use glint_scene::gpu_types::{Filter, View};
 use support::{parse, render_options};
 
 /// A white sphere on black, ambient only: a hard silhouette to anti-alias.

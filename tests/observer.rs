@@ -7,12 +7,12 @@
 mod support;
 
 use glam::{DVec3, Vec3};
+use glint_encoding::gpu_types::{NO_RAY, RAY_EYE, RAY_REFRACT, RAY_SHADOW};
+use glint_encoding::observer::{object_bounds, Ink, Observer, Overlay, OverlayOptions, ProbedPixel, RayId};
 use glint_gpu::probe::{Prober, RayTree};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, RenderOptions};
 use glint_scene::camera_frame::CameraFrame;
-use glint_scene::gpu_types::{NO_RAY, RAY_EYE, RAY_REFRACT, RAY_SHADOW};
-use glint_scene::observer::{object_bounds, Ink, Observer, Overlay, OverlayOptions, ProbedPixel, RayId};
 use glint_scene::{Camera, Projection, Scene, MAX_DEPTH_LIMIT};
 
 /// A glass ball in front of a red one over a floor, the light up and left.

@@ -1,6 +1,6 @@
-//! Ray packets (shaders/lib/packet.wgsl): with `Tuning::packets` the
+//! Ray packets (shaders/fast/packet.wgsl): with `Tuning::packets` the
 //! primary kernel traces the eye rays of each 2×2 block of pixels together,
-//! through the BVH or through their eye tile's list (shaders/lib/eye_tiles.wgsl),
+//! through the BVH or through their eye tile's list (shaders/fast/eye_tiles.wgsl),
 //! and each ray must get exactly the hit it gets alone. Every data view and
 //! the ray counts of both walks are held to the kernel that traces single
 //! rays, bit for bit, for every kind of primitive, both projections, and
@@ -8,8 +8,8 @@
 
 mod support;
 
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::View;
 use glint_scene::Scene;
 
 /// Width and height odd, so the last column and row of blocks hang over the edge.
@@ -55,6 +55,9 @@ fn packets_of_every_primitive_kind_hit_what_single_rays_hit() {
     for seed in 0..4 {
         misses += assert_packets_trace_as_single_rays(&glint_reference::random_scene(seed), &format!("random scene {seed}"));
     }
+    // Every kind in one scene, smooth triangles and a concave polygon among them.
+    let gallery = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/gallery/primitives.toml");
+    misses += assert_packets_trace_as_single_rays(&glint_scene::load(&gallery).unwrap_or_else(|e| panic!("{e}")), "primitives.toml");
     assert!(misses > 0, "no eye ray missed: packets of hits and misses were not tried");
 }
 
@@ -132,7 +135,7 @@ fn eye_tiles_follow_the_camera() {
     let want = depth(&fresh.buffers);
 
     let mut prepared = renderer.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap();
-    let uniforms = glint_scene::gpu_types::scene_uniforms(&moved, SIZE.0, SIZE.1, prepared.lights, prepared.buffers.bvh_root());
+    let uniforms = glint_encoding::gpu_types::scene_uniforms(&moved, SIZE.0, SIZE.1, prepared.lights, prepared.buffers.bvh_root());
     renderer.write_uniforms(&mut prepared.buffers, &uniforms).unwrap();
     assert!(!prepared.buffers.tuning.eye_tiles, "the tiles of the old view are not walked");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera moved in place");

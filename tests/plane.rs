@@ -6,10 +6,10 @@
 mod support;
 
 use glam::DVec3;
+use glint_encoding::gpu_types::{View, RAY_EYE, RAY_SHADOW};
 use glint_gpu::probe::Prober;
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Image, RenderOptions};
-use glint_scene::gpu_types::{View, RAY_EYE, RAY_SHADOW};
 use glint_scene::{Ray, Scene};
 use support::{assert_close, parse, render, render_options};
 

@@ -4,15 +4,16 @@
 
 mod support;
 
+use glint_encoding::gpu_bvh::GpuBvh;
+use glint_encoding::gpu_types::{self, View};
 use glint_gpu::{RenderOptions, SceneBuffers};
 use glint_scene::bvh::Bvh;
-use glint_scene::gpu_types::{self, View};
 use glint_scene::Scene;
 
 /// `scene` on the device as `Renderer::prepare` puts it, but with its polygons whole.
 fn upload_whole(scene: &Scene) -> SceneBuffers {
     let bvh = Bvh::build(&gpu_types::primitive_bounds(scene));
-    let packed = gpu_types::pack(scene, &bvh.order, bvh.gpu().unwrap());
+    let packed = gpu_types::pack(scene, &bvh.order, GpuBvh::encode(&bvh).unwrap());
     let uniforms = gpu_types::scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.bvh_root);
     support::renderer().upload(&packed, uniforms).unwrap()
 }

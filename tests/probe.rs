@@ -11,14 +11,14 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 use glam::DVec3;
+use glint_encoding::gpu_types::{
+    ProbeRay, View, MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_SHADOW_TRACED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE,
+    RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
+};
 use glint_gpu::probe::{Prober, RayTree};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Prepared, RenderOptions, SceneBuffers};
 use glint_reference::{RayKind, RefRay, RefTree, ShadowRay, Tracer};
-use glint_scene::gpu_types::{
-    ProbeRay, View, MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_SHADOW_TRACED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE,
-    RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
-};
 use glint_scene::Scene;
 
 fn prober() -> &'static Prober {

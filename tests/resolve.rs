@@ -4,9 +4,9 @@
 
 mod support;
 
+use glint_encoding::gpu_types::{View, MISS};
 use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{display, Acceleration, RenderOptions, Renderer, ToneMap};
-use glint_scene::gpu_types::{View, MISS};
 
 /// Samples covering what the kernels write: radiance sums of several samples,
 /// zeros, unit normals, depths and misses, ids and −1, node counts, NaN.

@@ -5,8 +5,8 @@
 mod support;
 
 use glam::Vec3;
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::View;
 use glint_scene::{Attenuation, LightKind, Projection, Scene, Shape};
 use support::{parse, render};
 

@@ -2,15 +2,24 @@
 //! (`SceneArrays`: textures for kernels lavapipe compiles without its
 //! optimisation passes), and a BVH that fits from uniform buffers
 //! (`Tuning::uniform_tree`). All must trace the same bits: every view,
-//! ray packets and single rays, every kind of primitive, and a scene whose
-//! arrays fill more than one row of texels.
+//! ray packets and single rays, every kind of primitive, shadows, reflection
+//! and refraction, and a scene whose arrays fill more than one row of texels.
 
 mod support;
 
+use glint_encoding::gpu_types::{View, UNIFORM_TREE_RECORDS};
 use glint_gpu::shaders::{SceneArrays, ShaderSource};
 use glint_gpu::{Acceleration, RenderOptions, Renderer};
-use glint_scene::gpu_types::{View, UNIFORM_TREE_RECORDS};
 use glint_scene::Scene;
+
+/// Scenes of every kind of primitive (smooth triangles among them), tinted
+/// shadows, mirrors, glass and a checkered plane.
+fn gallery() -> Vec<(&'static str, Scene)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    ["gallery/primitives.toml", "showcase.toml"]
+        .map(|file| (file, glint_scene::load(&dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))))
+        .into()
+}
 
 fn renderer(arrays: SceneArrays) -> Renderer {
     let gpu = support::gpu();
@@ -49,6 +58,9 @@ fn textures_and_buffers_trace_the_same_bits() {
         assert_textures_trace_as_buffers(&buffers, &textures, &scene, name);
     }
     assert_textures_trace_as_buffers(&buffers, &textures, &glint_reference::random_scene(1), "random scene 1");
+    for (name, scene) in gallery() {
+        assert_textures_trace_as_buffers(&buffers, &textures, &scene, name);
+    }
 }
 
 /// Each kernel that walks the tree, from either kind of arrays, renders the
@@ -57,15 +69,18 @@ fn textures_and_buffers_trace_the_same_bits() {
 /// buffer holds is read from the others.
 #[test]
 fn a_tree_in_uniform_buffers_traces_as_in_the_other_arrays() {
-    let views = [View::Shaded, View::Depth, View::Diffuse, View::Heatmap];
+    let spd = ["tetra:4", "mount:5", "gears:1", "tree:2", "rings:1"].map(|name| {
+        (name, glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}")))
+    });
+    let scenes: Vec<(&str, Scene)> = spd.into_iter().chain(gallery()).collect();
     for arrays in SceneArrays::ALL {
         let renderer = renderer(arrays);
-        for name in ["tetra:4", "mount:5", "gears:1", "tree:2", "rings:1"] {
-            let mut scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
+        for (name, scene) in &scenes {
+            let mut scene = scene.clone();
             (scene.width, scene.height) = (33, 25);
             let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
             assert!(prepared.buffers.tuning.uniform_tree, "{name}: {} records fit", prepared.bvh_nodes);
-            for view in views {
+            for view in View::ALL {
                 for packets in [false, true] {
                     let mut render = |uniform_tree| {
                         let tuning = &mut prepared.buffers.tuning;

@@ -1,12 +1,12 @@
 //! Kernels specialised to the one view a command renders (`glint render`
 //! without AOVs) and to the shading terms a scene's materials and lights make
-//! (glint-scene's specialization.rs) render the very pixels and ray counts of
+//! (glint-encoding's specialization.rs) render the very pixels and ray counts of
 //! the kernels that serve every view and every term.
 
 mod support;
 
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::View;
 use support::{parse, renderer};
 
 // Small kernels (two kinds) keep the compiles quick; the mirror floor makes

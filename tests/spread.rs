@@ -1,4 +1,4 @@
-//! The order of a dispatch's workgroups over a band (`lib/spread.wgsl`), run
+//! The order of a dispatch's workgroups over a band (`fast/spread.wgsl`), run
 //! on the device: every workgroup gets a place of its own, and each of the
 //! runs of consecutive workgroups lavapipe deals its threads holds its share
 //! of every strip of the band, whatever the count; and a workgroup's
@@ -7,10 +7,9 @@
 
 mod support;
 
+use glint_encoding::gpu_types::{wgsl_prelude, View, SPREAD_STRIPS};
 use glint_gpu::shaders::ShaderSource;
-use glint_scene::gpu_types::{
-    BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT, SPREAD_STRIPS, View, wgsl_prelude,
-};
+use glint_gpu::WorkgroupSizes;
 use wgpu::util::DeviceExt;
 
 const PLACES_KERNEL: &str = r#"
@@ -33,7 +32,7 @@ fn places(groups: [u32; 2]) -> Vec<u32> {
 fn run_places(kernel: &str, groups: [u32; 2], count: usize) -> Vec<u32> {
     let gpu = support::gpu();
     let device = &gpu.device;
-    let spread = std::fs::read_to_string(ShaderSource::source_dir().join("lib/spread.wgsl")).unwrap();
+    let spread = std::fs::read_to_string(ShaderSource::source_dir().join("fast/spread.wgsl")).unwrap();
     let source = format!("{}{spread}{kernel}", wgsl_prelude());
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("spread"),
@@ -149,7 +148,8 @@ fn invocation_places(size: [u32; 2]) -> Vec<u32> {
 
 #[test]
 fn every_four_consecutive_invocations_trace_a_2x2_block() {
-    for size in [[BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT], [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT], [2, 2], [6, 4]] {
+    let profiles = [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE].into_iter().flat_map(|w| [w.band(), w.primary()]);
+    for size in profiles.chain([[2, 2], [6, 4]]) {
         let places = invocation_places(size);
         assert_each_place_once(&places, &format!("a workgroup of {size:?}"));
         for (g, group) in places.chunks(4).enumerate() {
@@ -161,24 +161,29 @@ fn every_four_consecutive_invocations_trace_a_2x2_block() {
     }
 }
 
-/// The plain profile's row order traces the pixels and counts the rays that
-/// spread order does: for the trace, primary and diffuse kernels, single rays
-/// and packets, in an image whose workgroups overhang its edges.
+/// The plain profile's row order and workgroup sizes trace the pixels and
+/// count the rays that lavapipe's spread order and sizes do: for the trace,
+/// primary and diffuse kernels in every view, single rays and packets, in an
+/// image whose workgroups overhang its edges, over every kind of primitive,
+/// shadows, reflection and refraction.
 #[test]
 fn row_order_traces_what_spread_order_traces() {
     let renderer = support::renderer();
-    for name in ["tetra:2", "balls:1"] {
-        let scene = glint_scene::load(std::path::Path::new(&format!("spd:{name}"))).unwrap_or_else(|e| panic!("{e}"));
+    let scenes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    for name in ["spd:tetra:2", "spd:balls:1", "gallery/primitives.toml", "showcase.toml"] {
+        let path = if name.starts_with("spd:") { name.into() } else { scenes.join(name) };
+        let scene = glint_scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let mut prepared = renderer.prepare(&scene, 45, 29, glint_gpu::Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
-        for view in [View::Shaded, View::Depth, View::Diffuse] {
+        for view in View::ALL {
             for packets in [false, true] {
                 let options = glint_gpu::RenderOptions { view, spp: 2, ..Default::default() };
-                let mut render = |spread| {
+                let mut render = |spread, workgroups| {
                     let tuning = &mut prepared.buffers.tuning;
-                    (tuning.packets, tuning.eye_tiles, tuning.spread) = (packets, false, spread);
+                    (tuning.packets, tuning.eye_tiles, tuning.spread, tuning.workgroups) = (packets, false, spread, workgroups);
                     renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
                 };
-                let ((spread, spread_stats), (rows, row_stats)) = (render(true), render(false));
+                let (spread, spread_stats) = render(true, WorkgroupSizes::LAVAPIPE);
+                let (rows, row_stats) = render(false, WorkgroupSizes::PLAIN);
                 let case = format!("{name}, {view:?} view, packets {packets}");
                 support::assert_images_equal(&rows.linear, &spread.linear, 0, &case);
                 assert_eq!(row_stats, spread_stats, "{case}");

@@ -5,9 +5,9 @@
 
 mod support;
 
+use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Channels, Image, ImageSink, PngBits, RayStats, Region, RenderOptions, Renderer};
-use glint_scene::gpu_types::{Filter, View};
 use support::{gpu, parse, renderer};
 
 fn showcase(width: u32, height: u32) -> glint_scene::Scene {

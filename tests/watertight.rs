@@ -5,8 +5,8 @@
 mod support;
 
 use glam::Vec3;
+use glint_encoding::gpu_types::{View, MISS};
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::gpu_types::{View, MISS};
 use glint_scene::{Camera, Material, Object, Projection, RenderSettings, Scene, Shape};
 
 /// A scene of `shapes`, one object each, seen by `camera` at 512 × 512.

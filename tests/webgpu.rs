@@ -9,12 +9,12 @@ use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
+use glint_encoding::gpu_types::View;
+use glint_encoding::primitive_kinds::ALL_KINDS;
+use glint_encoding::specialization::Specialization;
 use glint_gpu::kernel_dump::{self, KernelVariant};
-use glint_gpu::shaders::{Kernel, SceneArrays, ShaderSource};
+use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::Tuning;
-use glint_scene::gpu_types::View;
-use glint_scene::primitive_kinds::ALL_KINDS;
-use glint_scene::specialization::Specialization;
 
 /// What naga may accept for a kernel on a WebGPU device: core WebGPU, plus
 /// subgroup operations for the kernels that need the `subgroups` feature.
@@ -86,7 +86,7 @@ fn every_kernel_validates_under_webgpu_capabilities_and_default_limits() {
     for variant in KernelVariant::all() {
         assert_portable(variant.kernel, Specialization::ALL, variant.tuning);
     }
-    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
+    let lavapipe = Tuning::LAVAPIPE;
     let kinds = (0..2 * (ALL_KINDS + 1)).map(|bits| {
         Specialization { kinds: bits & ALL_KINDS, secondary_rays: bits > ALL_KINDS, ..Specialization::ALL }
     });

@@ -5,14 +5,14 @@ use std::mem::{offset_of, size_of};
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use glint_gpu::shaders::{expand, imports, Kernel, SceneArrays, ShaderSource, EYE_BLOCK_FILES, EYE_BLOCK_IMPORT, SCENE_ARRAYS_IMPORT, SOURCES};
-use glint_gpu::Tuning;
-use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_bvh::{GpuGrid, GpuNode};
+use glint_encoding::gpu_types::{
     DispatchParams, GpuCamera, GpuLight, GpuMaterial, GpuPrim, ProbeHeader, ProbeRay, ResolveParams, SceneUniforms, View,
 };
-use glint_scene::primitive_kinds::{ALL_KINDS, KINDS};
-use glint_scene::specialization::Specialization;
+use glint_encoding::primitive_kinds::{ALL_KINDS, KINDS};
+use glint_encoding::specialization::Specialization;
+use glint_gpu::shaders::{expand, imports, Kernel, ShaderSource, SOURCES};
+use glint_gpu::{Tuning, WorkgroupSizes, STAND_INS};
 
 fn module(kernel: Kernel) -> naga::Module {
     ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap().validate().unwrap()
@@ -33,12 +33,23 @@ fn every_kernel_validates_in_every_tuning() {
     }
 }
 
+/// The plain tuning, which every device but lavapipe gets, composes the
+/// lecture's files alone: nothing of shaders/fast/.
+#[test]
+fn the_plain_tuning_composes_no_fast_file() {
+    for kernel in Kernel::ALL {
+        let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
+        let fast: Vec<&String> = composed.files.iter().map(|(name, ..)| name).filter(|name| name.starts_with("fast/")).collect();
+        assert!(fast.is_empty(), "{kernel:?}: {fast:?}");
+    }
+}
+
 /// Every kernel that intersects primitives validates for every specialisation
 /// a scene can need, plain and tuned as lavapipe's, and only those kernels are
 /// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
-    let lavapipe = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: false, spread: true };
+    let lavapipe = Tuning { eye_tiles: false, ..Tuning::LAVAPIPE };
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, ..)| name == "lib/primitive.wgsl");
@@ -71,60 +82,89 @@ fn every_specialisation_validates() {
 }
 
 /// The host dispatches as many workgroups as the kernels' `@workgroup_size`
-/// (times the pixels an invocation traces) needs to cover a band.
+/// (times the pixels an invocation traces) needs to cover a band, in every
+/// profile's workgroup sizes.
 #[test]
 fn workgroup_sizes_are_the_hosts() {
-    for kernel in [Kernel::Trace, Kernel::Primary, Kernel::Diffuse] {
-        let module = module(kernel);
-        let entry = module.entry_points.iter().find(|e| e.name == kernel.entry_point()).unwrap();
-        let [x, y] = kernel.workgroup_size();
-        assert_eq!(entry.workgroup_size, [x, y, 1], "{kernel:?}");
+    for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+        let tuning = Tuning { workgroups, ..Tuning::PLAIN };
+        for kernel in [Kernel::Trace, Kernel::Primary, Kernel::Diffuse] {
+            let module = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().validate().unwrap();
+            let entry = module.entry_points.iter().find(|e| e.name == kernel.entry_point()).unwrap();
+            let [x, y] = tuning.workgroup_size(kernel);
+            assert_eq!(entry.workgroup_size, [x, y, 1], "{kernel:?}, {workgroups:?}");
+        }
     }
 }
 
-/// The places in `module` that call the function named `name`.
+/// The functions `block` calls.
+fn callees(block: &naga::Block) -> Vec<naga::Handle<naga::Function>> {
+    block
+        .iter()
+        .flat_map(|statement| match statement {
+            naga::Statement::Call { function, .. } => vec![*function],
+            naga::Statement::Block(b) => callees(b),
+            naga::Statement::If { accept, reject, .. } => [callees(accept), callees(reject)].concat(),
+            naga::Statement::Switch { cases, .. } => cases.iter().flat_map(|c| callees(&c.body)).collect(),
+            naga::Statement::Loop { body, continuing, .. } => [callees(body), callees(continuing)].concat(),
+            _ => Vec::new(),
+        })
+        .collect()
+}
+
+/// The places that call the function named `name` in `module`'s entry point
+/// and the functions it reaches, which are all a driver compiles.
 fn call_sites(module: &naga::Module, name: &str) -> usize {
-    fn count(block: &naga::Block, module: &naga::Module, name: &str) -> usize {
-        block
-            .iter()
-            .map(|statement| match statement {
-                naga::Statement::Call { function, .. } => usize::from(module.functions[*function].name.as_deref() == Some(name)),
-                naga::Statement::Block(b) => count(b, module, name),
-                naga::Statement::If { accept, reject, .. } => count(accept, module, name) + count(reject, module, name),
-                naga::Statement::Switch { cases, .. } => cases.iter().map(|c| count(&c.body, module, name)).sum(),
-                naga::Statement::Loop { body, continuing, .. } => count(body, module, name) + count(continuing, module, name),
-                _ => 0,
-            })
-            .sum()
+    let mut reached = Vec::new();
+    let mut calls = callees(&module.entry_points[0].function.body);
+    let mut sites = 0;
+    while let Some(function) = calls.pop() {
+        sites += usize::from(module.functions[function].name.as_deref() == Some(name));
+        if !reached.contains(&function) {
+            reached.push(function);
+            calls.extend(callees(&module.functions[function].body));
+        }
     }
-    let functions = module.functions.iter().map(|(_, f)| &f.body);
-    functions.chain(module.entry_points.iter().map(|e| &e.function.body)).map(|body| count(body, module, name)).sum()
+    sites
 }
 
 /// lavapipe inlines every call, so each call of the BVH walk is a copy of the
 /// walk and its primitive tests in the compiled kernel, which a cold start
-/// pays for. The ray tree traces its rays and their shadow rays through one
-/// call, and the walk tests a leaf's primitives through one call.
+/// pays for. Tuned for it, the ray tree traces its rays and their shadow rays
+/// through one call; the plain tree calls the walk for its rays (`trace_step`)
+/// and for shadow rays (`cast_shadow_ray`). The walk tests a leaf's
+/// primitives through one call.
 #[test]
 fn the_ray_tree_walks_the_bvh_through_one_call() {
     for kernel in [Kernel::Trace, Kernel::Probe] {
-        let module = module(kernel);
-        assert_eq!(call_sites(&module, "traverse"), 1, "{kernel:?}");
-        assert_eq!(call_sites(&module, "intersect_prim"), 1, "{kernel:?}");
+        for (one_walk_tree, walks) in [(true, 1), (false, 2)] {
+            let tuning = Tuning { one_walk_tree, ..Tuning::PLAIN };
+            let module = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().validate().unwrap();
+            assert_eq!(call_sites(&module, "traverse"), walks, "{kernel:?}, one walk {one_walk_tree}");
+            assert_eq!(call_sites(&module, "intersect_prim"), 1, "{kernel:?}");
+        }
+    }
+}
+
+/// The WGSL files under `dir`, at any depth, named relative to `shaders/`.
+fn wgsl_files_under(dir: &std::path::Path, found: &mut BTreeSet<String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            wgsl_files_under(&path, found);
+        } else if path.extension().is_some_and(|e| e == "wgsl") {
+            let name = path.strip_prefix(ShaderSource::source_dir()).unwrap().to_str().unwrap().replace('\\', "/");
+            found.insert(name);
+        }
     }
 }
 
 /// `shaders/` holds exactly the embedded files, each reached by some kernel.
 #[test]
 fn every_shader_file_is_embedded_and_part_of_a_kernel() {
-    let dir = ShaderSource::source_dir();
     let mut on_disk = BTreeSet::new();
-    for sub in ["kernels", "lib"] {
-        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
-            on_disk.insert(format!("{sub}/{}", entry.unwrap().file_name().into_string().unwrap()));
-        }
-    }
-    assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and SOURCES differ");
+    wgsl_files_under(&ShaderSource::source_dir(), &mut on_disk);
+    assert_eq!(on_disk, SOURCES.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>(), "shaders/ and the embedded files differ");
     let used: BTreeSet<String> = Kernel::ALL
         .iter()
         .flat_map(|&k| Tuning::all().into_iter().map(move |tuning| ShaderSource::Embedded.compose(k, Specialization::ALL, tuning).unwrap()))
@@ -156,39 +196,55 @@ fn declarations(source: &str) -> Vec<String> {
 
 /// Imports are stated, not inherited, and none is idle: a file uses a name
 /// declared in another file only if it imports that file, and it uses
-/// something of every file it imports. The import `scene_arrays` stands for
-/// either file of the scene's arrays, which declare the same functions, and
-/// `eye_block` for either walk of a block's eye rays. The primary kernel
-/// carries no ray tree.
+/// something of every file it imports. A fast/ file that stands in for a
+/// lib/ file declares the functions other files use of it, and an import of
+/// the lib/ file stands for it too. The primary kernel carries no ray tree.
 #[test]
 fn imports_are_exactly_what_each_file_uses() {
-    let read = |name: &str| std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
-    let is_scene_arrays = |name: &str| SceneArrays::ALL.iter().any(|a| a.file() == name);
-    let is_eye_block = |name: &str| EYE_BLOCK_FILES.contains(&name);
-    let functions = |file: &str| -> Vec<String> {
+    let read = |name: &str| expand(&std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap()).unwrap();
+    let functions = |file: &str| -> BTreeSet<String> {
         let source = read(file);
         declarations(&source).into_iter().filter(|n| source.contains(&format!("fn {n}("))).collect()
     };
-    let [buffers, textures] = SceneArrays::ALL.map(|arrays| functions(arrays.file()).into_iter().filter(|n| n != "texel_of").collect::<Vec<_>>());
-    assert_eq!(buffers, textures, "the two files of the scene's arrays declare different functions");
-    let [through_bvh, through_tiles] = EYE_BLOCK_FILES.map(functions);
-    assert_eq!(through_bvh, through_tiles, "the two walks of a block's eye rays declare different functions");
-    let mut declared: BTreeMap<String, Vec<String>> = SOURCES
-        .iter()
-        .filter(|n| n.starts_with("lib/") && !is_scene_arrays(n) && !is_eye_block(n))
-        .map(|n| (n.to_string(), declarations(&expand(&read(n)).unwrap())))
-        .collect();
-    declared.insert(SCENE_ARRAYS_IMPORT.to_string(), buffers);
-    declared.insert(EYE_BLOCK_IMPORT.to_string(), through_bvh);
+    let plain_of = |name: &str| STAND_INS.iter().find(|s| s.fast == name).map(|s| s.plain);
+    // The names a file's code uses, members after a `.` left out.
     let words = |source: &str| -> BTreeSet<String> {
         let code: String = source.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
-        code.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect()
+        let mut words = BTreeSet::new();
+        let mut rest = code.as_str();
+        while let Some(start) = rest.find(|c: char| c.is_alphanumeric() || c == '_') {
+            let len = rest[start..].find(|c: char| !(c.is_alphanumeric() || c == '_')).unwrap_or(rest.len() - start);
+            if !rest[..start].ends_with('.') {
+                words.insert(rest[start..start + len].to_string());
+            }
+            rest = &rest[start + len..];
+        }
+        words
     };
+    // A stand-in declares every function of its file that other files use.
+    for stand_in in STAND_INS {
+        let others: BTreeSet<String> = SOURCES
+            .iter()
+            .filter(|n| **n != stand_in.plain && plain_of(n) != Some(stand_in.plain))
+            .flat_map(|n| words(&read(n)))
+            .collect();
+        let missing: Vec<String> = functions(stand_in.plain).difference(&functions(stand_in.fast)).filter(|f| others.contains(*f)).cloned().collect();
+        assert!(missing.is_empty(), "shaders/{} stands in for {} without {missing:?}", stand_in.fast, stand_in.plain);
+    }
+    // A stand-in's own names are what it declares beyond the file it stands in for.
+    let declared: BTreeMap<String, Vec<String>> = SOURCES
+        .iter()
+        .filter(|n| !n.starts_with("kernels/"))
+        .map(|n| {
+            let plain: Vec<String> = plain_of(n).map(|p| declarations(&read(p))).unwrap_or_default();
+            (n.to_string(), declarations(&read(n)).into_iter().filter(|d| !plain.contains(d)).collect())
+        })
+        .collect();
     for name in SOURCES {
-        let source = read(name);
-        let (used, imported) = (words(&expand(&source).unwrap()), imports(&source));
+        let raw = std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap();
+        let (used, imported) = (words(&read(name)), imports(&raw));
         for (file, names) in &declared {
-            if file == name || (file == SCENE_ARRAYS_IMPORT && is_scene_arrays(name)) || (file == EYE_BLOCK_IMPORT && is_eye_block(name)) {
+            if file == name || plain_of(name) == Some(file.as_str()) {
                 continue;
             }
             let uses = names.iter().any(|n| used.contains(n));
@@ -198,6 +254,38 @@ fn imports_are_exactly_what_each_file_uses() {
     let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL, Tuning::PLAIN).unwrap();
     assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
     assert!(!primary.source.contains("fn diffuse_only"), "the primary kernel carries shadow rays");
+}
+
+/// The words of a SIMD machine's lanes, of drivers and of lavapipe's tuning,
+/// which the lecture's files leave to shaders/fast/ and docs/decisions/.
+const TUNING_WORDS: [&str; 8] = ["lane", "lanes", "simd", "driver", "lavapipe", "llvm", "packet", "packets"];
+
+/// The files of ARCHITECTURE.md's table of lecture concepts hold the code as
+/// the lecture reads it, one ray at a time: no four-wide twin (`fn …4(`) and
+/// no word of lanes, drivers or lavapipe.
+#[test]
+fn concept_files_hold_the_one_ray_code() {
+    let architecture = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("ARCHITECTURE.md")).unwrap();
+    let table = architecture.split("## Where each lecture concept lives").nth(1).and_then(|s| s.split("\n## ").next()).unwrap();
+    let files: BTreeSet<String> = table
+        .lines()
+        .filter_map(|row| row.strip_prefix('|')?.split('|').nth(1))
+        .flat_map(|cell| cell.split('`').skip(1).step_by(2).filter(|name| name.ends_with(".wgsl")).map(|name| format!("lib/{name}")).collect::<Vec<_>>())
+        .collect();
+    for concept in ["camera", "sphere", "triangle", "polygon", "cone", "plane", "shade", "shadow", "reflect", "refract", "ray_tree", "bvh"] {
+        assert!(files.contains(&format!("lib/{concept}.wgsl")), "ARCHITECTURE.md's concept table lacks {concept}.wgsl: {files:?}");
+    }
+    for file in &files {
+        assert!(SOURCES.contains(&file.as_str()), "ARCHITECTURE.md names shaders/{file}, which is not embedded");
+        let source = std::fs::read_to_string(ShaderSource::source_dir().join(file)).unwrap();
+        for (i, line) in source.lines().enumerate() {
+            let four_wide = line.split("fn ").skip(1).any(|rest| rest.split('(').next().is_some_and(|name| name.ends_with('4')));
+            assert!(!four_wide, "shaders/{file}:{}: a four-wide function belongs in shaders/fast/: {line}", i + 1);
+            let lower = line.to_lowercase();
+            let word = lower.split(|c: char| !c.is_alphanumeric()).find(|w| TUNING_WORDS.contains(w));
+            assert!(word.is_none(), "shaders/{file}:{}: \"{}\" belongs in shaders/fast/ or docs/decisions/: {line}", i + 1, word.unwrap_or_default());
+        }
+    }
 }
 
 #[test]
@@ -223,9 +311,9 @@ fn errors_name_the_file_and_line() {
     // Past a generated piece, lines are still the file's own.
     break_name("lib/primitive.wgsl", "let m =");
 
-    std::fs::write(dir.path().join("lib/sphere.wgsl"), "// import: nowhere\n").unwrap();
+    std::fs::write(dir.path().join("lib/sphere.wgsl"), "// A sphere.\n// import: types nowhere\n").unwrap();
     let err = compose().unwrap_err().to_string();
-    assert!(err.contains("lib/nowhere.wgsl"), "{err}");
+    assert!(err.contains("shaders/lib/sphere.wgsl:2: imports lib/nowhere.wgsl, which is no shader file"), "{err}");
     std::fs::copy(ShaderSource::source_dir().join("lib/sphere.wgsl"), dir.path().join("lib/sphere.wgsl")).unwrap();
     std::fs::write(dir.path().join("lib/primitive.wgsl"), "// generated: intersect_disk\n").unwrap();
     let err = compose().unwrap_err().to_string();
@@ -252,7 +340,7 @@ fn each_composed_line_is_the_line_it_is_located_at() {
         assert_eq!(pieces > 0, generated > 0, "{kernel:?}");
     }
     for kind in KINDS {
-        assert!(SOURCES.contains(&kind.file), "{} is not in shaders.rs's sources!", kind.file);
+        assert!(SOURCES.contains(&kind.file), "{} is not embedded", kind.file);
     }
 }
 
@@ -328,7 +416,7 @@ fn host_structs_match_wgsl() {
 /// Rust's values; no shader file declares one of them again.
 #[test]
 fn shared_constants_come_from_the_host() {
-    use glint_scene::gpu_types as g;
+    use glint_encoding::gpu_types as g;
     let module = trace_module();
     let value = |name: &str| {
         let (_, c) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).unwrap_or_else(|| panic!("no WGSL constant {name}"));

@@ -1,7 +1,7 @@
 // The diffuse kernel: the `diffuse` debug view, direct diffuse light alone. A
 // kernel apart from the primary one because its shadow rays are a second BVH
-// traversal: compiled into the primary kernel it more than doubled the
-// software rasteriser's compile of every data view (depth, normal, id…).
+// traversal, which every data view (depth, normal, id…) would otherwise
+// compile too (docs/decisions/008-diffuse-view-kernel.md).
 // import: bvh camera checker diffuse_view dispatch primitive scene_arrays
 
 @compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)

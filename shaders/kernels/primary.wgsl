@@ -2,11 +2,10 @@
 // heat map) and picking, which need the eye ray's hit alone. A kernel of its
 // own, without the ray tree or shadow rays, compiles to far leaner code than
 // the trace kernel (register and private-memory pressure), so these views and
-// picking run faster and compile sooner. Specialised with PACKETS, each
-// invocation traces the eye rays of a 2×2 block of pixels as one packet
-// (`trace_eye_block`: through the BVH, or its tile's list when the scene has
-// eye tiles), except for the heat map, which counts each ray's own visits.
-// import: bvh camera checker dispatch eye_block packet primitive scene_arrays types
+// picking run faster and compile sooner. An invocation traces the eye ray of
+// one pixel (`trace_eye_block`), or with PACKETS those of a 2×2 block of
+// pixels as one packet (fast/eye_bvh.wgsl, fast/eye_tiles.wgsl).
+// import: camera checker dispatch eye_block primitive scene_arrays types
 
 // What `view` shows of the eye ray `eye`'s closest hit: primitive `prim` at
 // distance `t`, or MISS.
@@ -39,24 +38,8 @@ fn primary_main(
     // bit k of `block` stands for pixel k of it, left to right, top to bottom.
     let corner = band_pixel(wid, lid, groups, vec2<u32>(BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT), select(1u, 2u, PACKETS));
     let block = select(1u, 0xfu, PACKETS);
-    var hits: PacketHit;
-    var nodes = vec4<u32>(0u);
-    // The loops over the block's pixels step through its bits, a count the
-    // driver's compiler does not know: it keeps one copy of their bodies
-    // instead of four (a cold start pays for every copy).
-    if PACKETS && dispatch_view() != VIEW_HEATMAP {
-        hits = trace_eye_block(corner, in_band(corner));
-    } else {
-        var left = block;
-        while left != 0u {
-            let k = firstTrailingBit(left);
-            left &= left - 1u;
-            let hit = traverse(camera_ray(vec2<f32>(block_pixel(corner, k)) + 0.5), 0.0, MISS, false, false);
-            hits.t[k] = hit.t;
-            hits.prim[k] = hit.prim;
-            nodes[k] = hit.nodes;
-        }
-    }
+    let hits = trace_eye_block(corner, in_band(corner));
+    // The loop over the block's pixels steps through its bits, as trace_eye_rays does.
     var hit_count = 0u;
     var miss_count = 0u;
     var left = block;
@@ -68,7 +51,7 @@ fn primary_main(
             hit_count += u32(hits.t[k] != MISS);
             miss_count += u32(hits.t[k] == MISS);
             if dispatch_view() == VIEW_HEATMAP {
-                write_pixel(pixel, vec3<f32>(f32(nodes[k])));
+                write_pixel(pixel, vec3<f32>(f32(hits.visited[k])));
             } else {
                 write_pixel(pixel, primary_view(camera_ray(vec2<f32>(pixel) + 0.5), hits.t[k], hits.prim[k]));
             }

@@ -1,9 +1,9 @@
 // BVH traversal with a private stack, nearest child first. The host builder
 // guarantees the tree depth fits BVH_STACK.
-// import: bindings primitive ray_frame scene_arrays types uniform_tree
+// import: bindings bvh_records primitive ray_frame scene_arrays types
 
-// A lane whose ray missed both children waits for the leaf phase to pop, so the
-// descent loop only descends (its body stays small and lanes stay in step).
+// A ray that missed both children pops in the leaf phase, so the descent loop
+// only descends (docs/decisions/033-descent-without-early-return.md).
 const NEEDS_POP: u32 = 0xfffffffeu;
 
 // Pending far children with their entry distances, so a pop needs no second
@@ -92,8 +92,8 @@ fn entered_grid(c: ChildCorners, left: bool, near_byte: vec3<u32>) -> Grid {
 //
 // The loop descends through interior nodes until it reaches a leaf (or misses
 // both children), then tests the leaf's primitives and pops ("while-while",
-// Aila & Laine 2009): the lanes of a SIMD group that walk in step then run one
-// kind of work at a time instead of paying for both in every iteration.
+// Aila & Laine 2009): rays walked side by side then do one kind of work at a
+// time instead of both in every iteration.
 fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) -> Hit {
     var hit = Hit(MISS, 0u, vec3<f32>(1.0), 0u);
     var t_max = t_max_in;
@@ -113,8 +113,7 @@ fn traverse(ray: Ray, t_min: f32, t_max_in: f32, any_hit: bool, tinted: bool) ->
     // The root's grid (unused when the root is a leaf).
     var grid = stored_grid(0u);
     while index != NO_NODE {
-        // A loop runs its body once even with no lane active (masked SIMD on
-        // a CPU); testing first skips that when every lane is at a leaf.
+        // The root, or a node returned to, may be a leaf already.
         if (index & LEAF) == 0u {
             loop {
                 hit.nodes++;
@@ -173,8 +172,8 @@ fn test_prims(
     tinted: bool,
 ) -> bool {
     for (var i = first; i < first + count; i++) {
-        // One intersection call for both queries: the driver inlines each
-        // call, and the trace kernel's one walk serves both (ray_tree.wgsl).
+        // One intersection call for both queries: the walk holds one copy
+        // of the tests (docs/decisions/024-one-walk-in-the-trace-kernel.md).
         let t = intersect_prim(i, ray, frame, t_min, select(*t_max, next_up(*t_max), !any_hit));
         if t == MISS {
             continue;
@@ -205,7 +204,7 @@ fn test_prims(
 // The most recently pushed node still closer than `t_max`, or NO_NODE; the
 // grid of an interior node returned to.
 fn pop(top: ptr<function, u32>, t_max: f32, grid: ptr<function, Grid>) -> u32 {
-    // Skips the loop's masked body when every lane's stack is empty.
+    // An empty stack ends the walk before the loop.
     if *top == 0u {
         return NO_NODE;
     }

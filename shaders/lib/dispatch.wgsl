@@ -1,6 +1,6 @@
 // What every tracing kernel does around its rays: which pixel of the band an
 // invocation has, adding its sample to the pixel's sum, and counting rays.
-// import: bindings spread
+// import: band_order bindings
 
 var<private> local_stats: array<u32, STAT_COUNT>;
 
@@ -22,7 +22,7 @@ fn rays_counted() -> u32 {
 }
 
 // The view this dispatch renders: a constant in a kernel specialised to one
-// view (ONLY_VIEW), so the driver compiles that view's code alone.
+// view (ONLY_VIEW), so the compiler keeps that view's code alone.
 fn dispatch_view() -> u32 {
     return select(dispatch.view, ONLY_VIEW, ONLY_VIEW != ANY_VIEW);
 }
@@ -30,16 +30,9 @@ fn dispatch_view() -> u32 {
 // The pixel an invocation traces in the current band, if the band covers one;
 // the top-left pixel of its block for a kernel whose invocations trace blocks
 // of `side`×`side` pixels. `size` is the kernel's workgroup size. Workgroups
-// and invocations take their places in row order, or with SPREAD in the
-// order of spread.wgsl.
+// and invocations take their places in the order of band_order.wgsl.
 fn band_pixel(wid: vec3<u32>, lid: vec3<u32>, groups: vec3<u32>, size: vec2<u32>, side: u32) -> vec2<u32> {
-    var group = wid.xy;
-    var invocation = lid.xy;
-    if SPREAD {
-        group = spread_workgroup(wid, groups);
-        invocation = spread_invocation(lid, size);
-    }
-    return side * (group * size + invocation) + dispatch.origin;
+    return side * band_place(wid, lid, groups, size) + dispatch.origin;
 }
 
 // Pixel k of the 2×2 block whose top-left pixel is `corner`, left to right,
@@ -59,7 +52,7 @@ fn accum_index(pixel: vec2<u32>) -> u32 {
 }
 
 // The first sample of a render writes its pixel (the sum starts from zero), so
-// it need not read it: a load per lane saved.
+// it need not read it: a load saved.
 fn accumulate(pixel: vec2<u32>, color: vec3<f32>) {
     let index = accum_index(pixel);
     if dispatch.sample_index == 0u {
@@ -79,8 +72,8 @@ fn write_pixel(pixel: vec2<u32>, value: vec3<f32>) {
 // Ray counts go to this workgroup's slot (of STAT_SLOTS): a workgroup barrier
 // to sum them first would cost more than the few uncontended atomics. The
 // atomics step through a bit mask of the kinds counted, a loop whose count
-// the driver's compiler does not know, so it keeps one copy of the atomic
-// (a lane at a time on a CPU) instead of unrolling one per kind.
+// the compiler does not know, so it keeps one copy of the atomic instead of
+// one per kind (docs/decisions/024-one-walk-in-the-trace-kernel.md).
 fn flush_ray_counts(wid: vec3<u32>, groups: vec3<u32>) {
     let base = ((wid.y * groups.x + wid.x) & (STAT_SLOTS - 1u)) * STAT_COUNT;
     var counted = 0u;

@@ -2,11 +2,10 @@
 // import: ray_frame scene_arrays types
 
 // Takes the primitive's index, not its value: each case then loads only the
-// fields its kind uses (a load per SIMD lane is what a software rasteriser
-// pays most for). Triangles and polygons are tested in the ray's frame, which
+// fields its kind uses. Triangles and polygons are tested in the ray's frame, which
 // the caller makes once per ray. The HAS_ flags of the kernel's specialisation
-// (glint-scene's specialization.rs) remove the tests of kinds the scene lacks.
-// The function is generated from glint-scene's primitive_kinds.rs.
+// (glint-encoding's specialization.rs) remove the tests of kinds the scene lacks.
+// The function is generated from glint-encoding's primitive_kinds.rs.
 // generated: intersect_prim
 
 struct Surface {

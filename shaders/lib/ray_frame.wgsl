@@ -11,16 +11,15 @@ struct RayFrame {
     // The frame's axes as rows: x = q[kx] − Sx·q[kz], y = q[ky] − Sy·q[kz] and
     // z = Sz·q[kz] for q relative to the origin, with kz the axis along which
     // the direction is largest and Sx, Sy, Sz the shear that cancels the ray's
-    // slope. As dot products they need no indexing by a per-ray axis, which a
-    // SIMD machine pays for per lane; the products with 0 and 1 are exact.
+    // slope. As dot products they need no indexing by a per-ray axis; the
+    // products with 0 and 1 are exact (docs/decisions/004).
     x: vec3<f32>,
     y: vec3<f32>,
     z: vec3<f32>,
 }
 
 fn ray_frame(ray: Ray) -> RayFrame {
-    // Selects rather than branches: straight-line code for the four rays of a
-    // packet (packet.wgsl).
+    // Selects rather than branches: the same straight-line code for every ray.
     let a = abs(ray.dir);
     let kz = select(select(2u, 1u, a.y > a.z), 0u, (a.x > a.y) & (a.x > a.z));
     // Swapping x and y for a ray down the axis keeps every winding's sign.
@@ -36,8 +35,9 @@ fn ray_frame(ray: Ray) -> RayFrame {
 }
 
 // `p` in the frame: x and y across the ray, z the distance along it. The sums
-// are written out, in the order `to_frame4` writes them, so that a ray gets
-// the same numbers alone as in a packet whatever a compiler does with `dot`.
+// are written out, so that every test that moves `p` into the frame gets the
+// same numbers whatever a compiler does with `dot` (fast/ray_frame4.wgsl
+// writes them in this order too).
 fn to_frame(f: RayFrame, p: vec3<f32>) -> vec3<f32> {
     let q = p - f.origin;
     return vec3<f32>(q.x * f.x.x + q.y * f.x.y + q.z * f.x.z, q.x * f.y.x + q.y * f.y.y + q.z * f.y.z, q.x * f.z.x + q.y * f.z.y + q.z * f.z.z);
@@ -62,40 +62,4 @@ fn edge_sign(a: vec2<f32>, b: vec2<f32>) -> f32 {
     let left = a.x * b.y;
     let right = a.y * b.x;
     return select(select(-1.0, 1.0, left > right), 0.0, left == right);
-}
-
-// The frames of four rays, ray k's in component k of each member: what a
-// packet (packet.wgsl) tests its primitives in.
-struct RayFrame4 {
-    origin: Vec3x4,
-    x: Vec3x4,
-    y: Vec3x4,
-    z: Vec3x4,
-}
-
-fn ray_frame4(rays: Rays4) -> RayFrame4 {
-    let f0 = ray_frame(ray_of(rays, 0u));
-    let f1 = ray_frame(ray_of(rays, 1u));
-    let f2 = ray_frame(ray_of(rays, 2u));
-    let f3 = ray_frame(ray_of(rays, 3u));
-    return RayFrame4(rays.origin, gather4(f0.x, f1.x, f2.x, f3.x), gather4(f0.y, f1.y, f2.y, f3.y), gather4(f0.z, f1.z, f2.z, f3.z));
-}
-
-// `to_frame` for four rays at once.
-fn to_frame4(f: RayFrame4, p: vec3<f32>) -> Vec3x4 {
-    let qx = p.x - f.origin.x;
-    let qy = p.y - f.origin.y;
-    let qz = p.z - f.origin.z;
-    return Vec3x4(qx * f.x.x + qy * f.x.y + qz * f.x.z, qx * f.y.x + qy * f.y.y + qz * f.y.z, qx * f.z.x + qy * f.z.y + qz * f.z.z);
-}
-
-// `edge` and `edge_sign` for four rays at once.
-fn edge4(a: Vec3x4, b: Vec3x4) -> vec4<f32> {
-    return a.x * b.y - a.y * b.x;
-}
-
-fn edge_sign4(a: Vec3x4, b: Vec3x4) -> vec4<f32> {
-    let left = a.x * b.y;
-    let right = a.y * b.x;
-    return select(select(vec4<f32>(-1.0), vec4<f32>(1.0), left > right), vec4<f32>(0.0), left == right);
 }

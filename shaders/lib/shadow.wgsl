@@ -3,7 +3,7 @@
 // occluder that stopped the ray, when t != MISS). Occluders beyond the light
 // do not count; the ray leaves along the geometric normal so smooth-shaded
 // surfaces do not shadow themselves at the terminator.
-// import: bindings bvh primitive types
+// import: bindings bvh dispatch primitive types
 
 struct ShadowRay {
     ray: Ray,
@@ -29,4 +29,15 @@ fn shadows_tinted() -> bool {
 // S for a light whose shadow ray is not traced (shadows off): all of it.
 fn unshadowed() -> Hit {
     return Hit(MISS, 0u, vec3<f32>(1.0), 0u);
+}
+
+// S at the surface `s` from a light in direction `to_light` at `distance`: the
+// any hit of the shadow ray towards it, or all of the light when shadows are off.
+fn cast_shadow_ray(s: Surface, to_light: vec3<f32>, distance: f32) -> Hit {
+    if !shadows_traced() {
+        return unshadowed();
+    }
+    count_ray(STAT_SHADOW);
+    let shadow = shadow_ray(s.point, s.geometric, to_light, distance);
+    return traverse(shadow.ray, 0.0, shadow.t_max, true, shadows_tinted());
 }

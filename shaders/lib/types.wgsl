@@ -1,6 +1,6 @@
 // Structs shared by the kernels. Each one the host uploads (Gpu…, the
 // uniforms, the dispatch) has a Rust twin of the same name in
-// crates/glint-scene/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
+// crates/glint-encoding/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
 // that sizes and member offsets agree. Rays are the kernels' own. The constants they use (PRIM_, VIEW_,
 // FLAG_, MISS, LEAF …) come from the generated prelude (gpu_types::wgsl_prelude).
 
@@ -96,7 +96,7 @@ struct GpuPrim {
     count: u32,
 }
 
-// A BVH record (crates/glint-scene/src/gpu_bvh.rs has the details). Interior:
+// A BVH record (crates/glint-encoding/src/gpu_bvh.rs has the details). Interior:
 // bytes 2c and 2c + 1 of quantized[a] are child c's box on axis a in cells of
 // the node's grid, `children` the first child's index with LEAF set when it is a
 // leaf and RIGHT_LEAF when the second is. Leaf: quantized.x is the first
@@ -116,38 +116,6 @@ struct GpuGrid {
 struct Ray {
     origin: vec3<f32>,
     dir: vec3<f32>,
-}
-
-// Four 3-vectors side by side: vector k's coordinates in component k of x, y
-// and z, so that one vec4 operation does an operation of all four.
-struct Vec3x4 {
-    x: vec4<f32>,
-    y: vec4<f32>,
-    z: vec4<f32>,
-}
-
-fn gather4(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, d: vec3<f32>) -> Vec3x4 {
-    return Vec3x4(vec4<f32>(a.x, b.x, c.x, d.x), vec4<f32>(a.y, b.y, c.y, d.y), vec4<f32>(a.z, b.z, c.z, d.z));
-}
-
-fn vector_of(v: Vec3x4, k: u32) -> vec3<f32> {
-    return vec3<f32>(v.x[k], v.y[k], v.z[k]);
-}
-
-// `dot(a, b)` for each of four vectors b, by the same `dot` one ray uses, so
-// that each gets the same bits as alone.
-fn dot4(a: vec3<f32>, b: Vec3x4) -> vec4<f32> {
-    return vec4<f32>(dot(a, vector_of(b, 0u)), dot(a, vector_of(b, 1u)), dot(a, vector_of(b, 2u)), dot(a, vector_of(b, 3u)));
-}
-
-// Four rays, the eye rays of a 2×2 block of pixels (packet.wgsl).
-struct Rays4 {
-    origin: Vec3x4,
-    dir: Vec3x4,
-}
-
-fn ray_of(rays: Rays4, k: u32) -> Ray {
-    return Ray(vector_of(rays.origin, k), vector_of(rays.dir, k));
 }
 
 fn prim_kind(p: GpuPrim) -> u32 {

@@ -4,11 +4,11 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
+use glint_encoding::gpu_types::View;
+use glint_encoding::specialization::Specialization;
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer};
-use glint_scene::gpu_types::View;
 use glint_gpu::{DeviceProfile, Tuning};
-use glint_scene::specialization::Specialization;
 
 use crate::{exit, Failure};
 
@@ -228,10 +228,10 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
 
 #[cfg(test)]
 mod tests {
+    use glint_encoding::gpu_types::View;
+    use glint_encoding::specialization::Specialization;
     use glint_gpu::shaders::SceneArrays;
-    use glint_gpu::{DeviceProfile, Tuning, PACKET_EYE_RAYS};
-    use glint_scene::gpu_types::View;
-    use glint_scene::specialization::Specialization;
+    use glint_gpu::{DeviceProfile, Tuning, WorkgroupSizes, PACKET_EYE_RAYS};
 
     #[test]
     fn each_view_is_timed_with_the_kernel_a_long_render_of_it_alone_compiles() {
@@ -244,6 +244,8 @@ mod tests {
             eye_tiles: false,
             resolves_on_host: false,
             spread: false,
+            one_walk_tree: false,
+            workgroups: WorkgroupSizes::PLAIN,
         };
         for view in [View::Depth, View::Shaded] {
             for packets in [false, true] {

@@ -6,9 +6,9 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use glint_encoding::gpu_types::View;
 use glint_gpu::shaders::{Kernel, ShaderSource};
 use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
-use glint_scene::gpu_types::View;
 
 use crate::{exit, Failure};
 

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use glam::Vec3;
-use glint_scene::{LightKind, Projection, Scene, Shape};
+use glint_scene::{LightKind, Projection, Scene, Shape, SHAPE_NAMES};
 
 use crate::{exit, Failure};
 
@@ -126,25 +126,13 @@ pub fn summary(name: &str, scene: &Scene) -> String {
     line("", format!("v = {}  up", vector(basis.v)));
     line("", format!("w = {}  backwards, from look_at to the eye", vector(basis.w)));
 
-    let (mut spheres, mut triangles, mut polygons, mut cones, mut cylinders, mut planes) = (0, 0, 0, 0, 0, 0);
-    for shape in scene.objects.iter().flat_map(|o| &o.shapes) {
-        match shape {
-            Shape::Sphere { .. } => spheres += 1,
-            Shape::Triangle { .. } => triangles += 1,
-            Shape::Polygon { .. } => polygons += 1,
-            Shape::Cone { base_radius, apex_radius, .. } if base_radius == apex_radius => cylinders += 1,
-            Shape::Cone { .. } => cones += 1,
-            Shape::Plane { .. } => planes += 1,
-        }
+    let shapes = || scene.objects.iter().flat_map(|o| &o.shapes);
+    let mut per_name = SHAPE_NAMES.map(|name| (0, name, format!("{name}s")));
+    for shape in shapes() {
+        per_name.iter_mut().find(|(_, name, _)| *name == shape.name()).expect("SHAPE_NAMES holds every name").0 += 1;
     }
-    let primitives = counts(&[
-        (spheres, "sphere", "spheres"),
-        (triangles, "triangle", "triangles"),
-        (polygons, "polygon", "polygons"),
-        (cones, "cone", "cones"),
-        (cylinders, "cylinder", "cylinders"),
-        (planes, "infinite plane", "infinite planes"),
-    ]);
+    let primitives = counts(&per_name.iter().map(|(n, one, many)| (*n, *one, many.as_str())).collect::<Vec<_>>());
+    let planes = shapes().filter(|s| !s.is_bounded()).count();
     let n = scene.primitive_count();
     line("objects", format!("{}, made of {n} primitive{}: {primitives}", scene.objects.len(), if n == 1 { "" } else { "s" }));
 

@@ -4,8 +4,8 @@
 
 use std::collections::BTreeSet;
 
+use glint_encoding::gpu_types::View;
 use glint_gpu::{Channels, Image};
-use glint_scene::gpu_types::View;
 
 /// What a legend says about the image's values, gathered tile by tile as
 /// the image is rendered, so no image need be kept for it.

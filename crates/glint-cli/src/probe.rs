@@ -5,10 +5,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use glint_encoding::gpu_types::{MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_SHADOW};
 use glint_gpu::probe::{kind_name, number_text as num, vec3_text as v3, Prober, RayTree, TreeText};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
-use glint_scene::gpu_types::{MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_SHADOW};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::{Projection, Scene};

@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
+use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
 use glint_gpu::{
     Acceleration, CompiledKernels, Format, Gpu, ImageSink, PngBits, Prepared, RayStats, Region, RenderOptions, Renderer, StagedImage, ToneMap,
 };
-use glint_scene::gpu_types::{Filter, View};
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::MAX_IMAGE_SIDE;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

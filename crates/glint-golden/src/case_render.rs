@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
+use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::{Acceleration, Image, RenderOptions, Renderer, ToneMap};
-use glint_scene::gpu_types::{Filter, View};
 use glint_scene::MAX_IMAGE_SIDE;
 use glint_scene::nff::NffAngle;
 use glint_scene::LoadOptions;

@@ -79,23 +79,14 @@ impl Gpu {
         adapters.into_iter().next().ok_or_else(|| GpuError::NoAdapter(format!("no GPU adapter found: {NO_ADAPTER_HINT}")))
     }
 
-    /// Opens `adapter` with WebGPU's default limits, so that what runs here
-    /// runs on any WebGPU device (a kernel that binds too much fails here
-    /// too), and subgroup operations where it has them (eye tiles).
+    /// Opens `adapter` as [`device_descriptor`] asks, with WebGPU's default limits.
     pub async fn open(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         Self::open_with(adapter, wgpu::Limits::default()).await
     }
 
     async fn open_with(adapter: wgpu::Adapter, limits: wgpu::Limits) -> Result<Self, GpuError> {
-        let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("glint"),
-                required_limits: limits,
-                required_features: adapter.features() & wgpu::Features::SUBGROUP,
-                ..Default::default()
-            })
-            .await
-            .map_err(|e| GpuError::Device(e.to_string()))?;
+        let descriptor = wgpu::DeviceDescriptor { required_limits: limits, ..device_descriptor(&adapter, SceneLimits::Default) };
+        let (device, queue) = adapter.request_device(&descriptor).await.map_err(|e| GpuError::Device(e.to_string()))?;
         Ok(Self { adapter, device, queue })
     }
 
@@ -105,19 +96,8 @@ impl Gpu {
     /// `error` stands.
     pub fn raised_for(&self, error: &GpuError) -> Option<Result<Gpu, GpuError>> {
         let GpuError::Limit { limit, .. } = error else { return None };
-        let (mut limits, offered) = (self.device.limits(), self.adapter.limits());
-        match *limit {
-            "max_storage_buffer_binding_size" if offered.max_storage_buffer_binding_size > limits.max_storage_buffer_binding_size => {
-                limits.max_storage_buffer_binding_size = offered.max_storage_buffer_binding_size;
-                limits.max_buffer_size = limits.max_buffer_size.max(offered.max_buffer_size.min(u64::from(offered.max_storage_buffer_binding_size)));
-            }
-            "max_buffer_size" if offered.max_buffer_size > limits.max_buffer_size => limits.max_buffer_size = offered.max_buffer_size,
-            "max_texture_dimension_2d" if offered.max_texture_dimension_2d > limits.max_texture_dimension_2d => {
-                limits.max_texture_dimension_2d = offered.max_texture_dimension_2d;
-            }
-            _ => return None,
-        }
-        Some(pollster::block_on(Self::open_with(self.adapter.clone(), limits)))
+        let mut limits = self.device.limits();
+        raise(&mut limits, &self.adapter.limits(), limit).then(|| pollster::block_on(Self::open_with(self.adapter.clone(), limits)))
     }
 
     pub fn info(&self) -> wgpu::AdapterInfo {
@@ -135,9 +115,103 @@ impl Gpu {
     }
 }
 
+/// How far a device's limits reach for a scene's size.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SceneLimits {
+    /// WebGPU's defaults; a scene that needs more opens the device again
+    /// (`Gpu::raised_for`).
+    Default,
+    /// The adapter's own, for a device that cannot be opened again: the
+    /// viewer's, which eframe owns.
+    Adapter,
+}
+
+/// The limits a scene's size may need beyond WebGPU's defaults.
+const SCENE_SIZED_LIMITS: [&str; 3] = ["max_storage_buffer_binding_size", "max_buffer_size", "max_texture_dimension_2d"];
+
+/// What Glint asks of a device of `adapter`: subgroup operations where its
+/// profile walks eye tiles, and WebGPU's default limits, so that what runs
+/// here runs on any WebGPU device (a kernel that binds too much fails here
+/// too); `scene_limits` says how far the limits a scene's size needs reach.
+pub fn device_descriptor(adapter: &wgpu::Adapter, scene_limits: SceneLimits) -> wgpu::DeviceDescriptor<'static> {
+    let quick_kernels = crate::lavapipe::kernels_compile_quickly();
+    let (required_features, required_limits) = requirements(&adapter.get_info(), adapter.features(), &adapter.limits(), scene_limits, quick_kernels);
+    wgpu::DeviceDescriptor { label: Some("glint"), required_features, required_limits, ..Default::default() }
+}
+
+/// [`device_descriptor`]'s features and limits for the adapter `info`
+/// describes, which offers `features` and `offered`.
+fn requirements(
+    info: &wgpu::AdapterInfo,
+    features: wgpu::Features,
+    offered: &wgpu::Limits,
+    scene_limits: SceneLimits,
+    quick_kernels: bool,
+) -> (wgpu::Features, wgpu::Limits) {
+    let eye_tiles = crate::DeviceProfile::of(info, features, quick_kernels).eye_tiles;
+    let mut limits = wgpu::Limits::default();
+    if scene_limits == SceneLimits::Adapter {
+        for limit in SCENE_SIZED_LIMITS {
+            raise(&mut limits, offered, limit);
+        }
+    }
+    (if eye_tiles { wgpu::Features::SUBGROUP } else { wgpu::Features::empty() }, limits)
+}
+
+/// Raises `limit` in `limits` to the adapter's `offered` value; false when
+/// it is no limit of a scene's size or the adapter offers no more.
+fn raise(limits: &mut wgpu::Limits, offered: &wgpu::Limits, limit: &str) -> bool {
+    match limit {
+        "max_storage_buffer_binding_size" if offered.max_storage_buffer_binding_size > limits.max_storage_buffer_binding_size => {
+            limits.max_storage_buffer_binding_size = offered.max_storage_buffer_binding_size;
+            limits.max_buffer_size = limits.max_buffer_size.max(offered.max_buffer_size.min(u64::from(offered.max_storage_buffer_binding_size)));
+        }
+        "max_buffer_size" if offered.max_buffer_size > limits.max_buffer_size => limits.max_buffer_size = offered.max_buffer_size,
+        "max_texture_dimension_2d" if offered.max_texture_dimension_2d > limits.max_texture_dimension_2d => {
+            limits.max_texture_dimension_2d = offered.max_texture_dimension_2d;
+        }
+        _ => return false,
+    }
+    true
+}
+
 /// A warning when the adapter `info` describes has a driver known to give
 /// wrong pixels: a lavapipe older than Mesa 23, whose shaders silently stop
 /// looping after 65,535 iterations.
 pub fn driver_warning(info: &wgpu::AdapterInfo) -> Option<String> {
     crate::lavapipe::old_lavapipe_warning(info)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::profile::tests::{adapter, lavapipe};
+
+    /// A device asks for subgroup operations exactly where its profile walks
+    /// eye tiles, and for WebGPU's default limits unless it cannot be opened
+    /// again; then for the adapter's own limits of a scene's size alone.
+    #[test]
+    fn a_device_is_asked_for_what_its_profile_uses() {
+        let mut offered = wgpu::Limits::default();
+        (offered.max_texture_dimension_2d, offered.max_storage_buffer_binding_size, offered.max_buffer_size) = (16384, 1 << 31, 1 << 32);
+        offered.max_storage_buffers_per_shader_stage = 64;
+        let ask = |info: &wgpu::AdapterInfo, quick_kernels| requirements(info, wgpu::Features::SUBGROUP, &offered, SceneLimits::Default, quick_kernels);
+        assert_eq!(ask(&lavapipe(128), false), (wgpu::Features::SUBGROUP, wgpu::Limits::default()), "eye tiles");
+        assert_eq!(ask(&lavapipe(128), true).0, wgpu::Features::empty(), "quick kernels read textures, so walk no eye tiles");
+        let gpu = adapter("NVIDIA GeForce RTX 4090", wgpu::DeviceType::DiscreteGpu, 32);
+        assert_eq!(ask(&gpu, false), (wgpu::Features::empty(), wgpu::Limits::default()));
+        let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
+        assert_eq!(ask(&small_groups, false).0, wgpu::Features::SUBGROUP);
+        let without = requirements(&lavapipe(128), wgpu::Features::empty(), &offered, SceneLimits::Default, false);
+        assert_eq!(without.0, wgpu::Features::empty(), "an adapter without subgroups is not asked for them");
+
+        let (_, limits) = requirements(&lavapipe(128), wgpu::Features::SUBGROUP, &offered, SceneLimits::Adapter, false);
+        let sized = wgpu::Limits {
+            max_texture_dimension_2d: 16384,
+            max_storage_buffer_binding_size: 1 << 31,
+            max_buffer_size: 1 << 32,
+            ..wgpu::Limits::default()
+        };
+        assert_eq!(limits, sized);
+    }
 }

@@ -4,7 +4,7 @@
 //! (`tests/resolve.rs`) can hold the GPU to it pixel by pixel, and resolves
 //! renders on a CPU adapter, where compiling the kernel costs more than it saves.
 
-use glint_scene::gpu_types::View;
+use glint_encoding::gpu_types::View;
 
 use crate::{Image, RenderOptions, ToneMap};
 

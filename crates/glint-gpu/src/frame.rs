@@ -5,12 +5,13 @@ use std::time::Duration;
 
 use web_time::Instant;
 use glam::Vec3;
+use glint_encoding::gpu_bvh::GpuBvh;
+use glint_encoding::gpu_types::{self, View, UNIFORM_TREE_RECORDS};
 use glint_scene::bvh::Bvh;
-use glint_scene::eye_tiles::Footprints;
-use glint_scene::gpu_types::{self, View, UNIFORM_TREE_RECORDS};
 use glint_scene::polygon_split;
 use glint_scene::Scene;
 
+use crate::eye_tiles::binning::Footprints;
 use crate::{GpuError, Renderer, SceneBuffers};
 
 /// How the primitives are organised for traversal.
@@ -72,7 +73,7 @@ impl Renderer {
             Acceleration::Bvh => Bvh::build(&bounds),
             Acceleration::BruteForce => Bvh::single_leaf(&bounds),
         };
-        let gpu_bvh = bvh.gpu()?;
+        let gpu_bvh = GpuBvh::encode(&bvh)?;
         let bvh_build = start.elapsed();
         let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
         let uniforms = gpu_types::scene_uniforms(scene, width, height, packed.light_count, packed.bvh_root);

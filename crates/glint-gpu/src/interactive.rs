@@ -7,8 +7,8 @@ use std::ops::Range;
 use std::sync::{Arc, Mutex};
 
 use bytemuck::Zeroable;
-use glint_scene::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParams, SceneUniforms, View};
-use glint_scene::specialization::Specialization;
+use glint_encoding::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParams, SceneUniforms, View};
+use glint_encoding::specialization::Specialization;
 
 use crate::error_scope::ErrorScope;
 use crate::pipelines::create_pipeline;

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use glint_scene::specialization::Specialization;
+use glint_encoding::specialization::Specialization;
 
 use crate::shaders::{Composed, Kernel, ShaderSource};
 use crate::tuning::Tuning;
@@ -32,7 +32,7 @@ impl KernelVariant {
         all
     }
 
-    /// "primary.buffers-packets-eye-tiles.wgsl": the kernel's file, then its tuning.
+    /// "primary.buffers-packets-eye-tiles-spread-8x8-8x4.wgsl": the kernel's file, then its tuning.
     pub fn file_name(self) -> String {
         let file = self.kernel.file();
         let stem = file.trim_start_matches("kernels/").trim_end_matches(".wgsl");

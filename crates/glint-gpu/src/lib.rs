@@ -29,19 +29,20 @@ pub mod stitch;
 mod tiles;
 mod tuning;
 
-pub use device::{adapter_rank, backends, driver_warning, Gpu, ADAPTER_ENV, NO_ADAPTER_HINT};
+pub use device::{adapter_rank, backends, device_descriptor, driver_warning, Gpu, SceneLimits, ADAPTER_ENV, NO_ADAPTER_HINT};
 pub use lavapipe::{
     compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_dir, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
     LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
 };
 pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
-pub use tuning::Tuning;
+pub use eye_tiles::binning::Footprints;
+pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
     OutputPathError, PngBits,
 };
-pub use glint_scene::RayStats;
+pub use glint_encoding::RayStats;
 pub use readback::Readback;
 pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
 pub use sink::{ImageSink, StagedImage};

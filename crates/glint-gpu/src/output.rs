@@ -78,7 +78,7 @@ impl Image {
     pub fn with_misses_at_infinity(mut self) -> Self {
         for p in &mut self.linear {
             for c in &mut p[..3] {
-                if *c >= glint_scene::gpu_types::MISS {
+                if *c >= glint_encoding::gpu_types::MISS {
                     *c = f32::INFINITY;
                 }
             }

@@ -9,7 +9,7 @@
 use std::collections::HashMap;
 use std::sync::Mutex;
 
-use glint_scene::specialization::Specialization;
+use glint_encoding::specialization::Specialization;
 
 use crate::error_scope::ErrorScope;
 use crate::renderer::one_line;

@@ -1,4 +1,4 @@
-//! The kernels' dispatch on the primitive kind, generated from glint-scene's
+//! The kernels' dispatch on the primitive kind, generated from glint-encoding's
 //! registry (primitive_kinds.rs), as the prelude's constants are, so that no
 //! WGSL file lists the kinds. A file asks for a piece with a line
 //! `// generated: NAME`, and the composer puts the piece there (shaders.rs).
@@ -6,7 +6,7 @@
 //! removes the kinds its scenes lack; a kind the registry lacks falls through
 //! every branch: a miss, or a zero normal.
 
-use glint_scene::primitive_kinds::{Inputs, PrimitiveKind, KINDS};
+use glint_encoding::primitive_kinds::{Inputs, PrimitiveKind, KINDS};
 
 /// What starts a line that asks for a generated piece.
 pub const MARKER: &str = "// generated:";
@@ -22,6 +22,12 @@ pub fn piece(name: &str) -> Option<String> {
         "packet_test" => Some(packet_test()),
         _ => None,
     }
+}
+
+/// The files of the kinds whose functions the piece called `name` calls: every
+/// kind's, but the packet test's own four-wide tests are its file's imports.
+pub fn files(name: &str) -> Vec<&'static str> {
+    KINDS.iter().filter(|k| name != "packet_test" || k.packet_intersect.is_none()).map(|k| k.file).collect()
 }
 
 fn is(k: &PrimitiveKind) -> String {
@@ -142,7 +148,7 @@ mod tests {
     //! and `let` flags, for every set of kinds a kernel can be specialised to.
     use std::collections::{BTreeSet, HashMap};
 
-    use glint_scene::primitive_kinds::{ALL_KINDS, KINDS};
+    use glint_encoding::primitive_kinds::{ALL_KINDS, KINDS};
 
     use super::*;
 

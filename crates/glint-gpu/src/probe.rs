@@ -3,12 +3,12 @@
 //! every ray and every term it adds (shaders/kernels/probe.wgsl).
 
 use bytemuck::Zeroable;
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_types::{
     DispatchParams, ProbeHeader, ProbeRay, View, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_CAPACITY, PROBE_SHADOW_TRACED,
     PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
 };
-use glint_scene::specialization::Specialization;
-use glint_scene::{Scene, Shape};
+use glint_encoding::specialization::Specialization;
+use glint_scene::Scene;
 
 use crate::error_scope::ErrorScope;
 use crate::pipelines::create_pipeline;
@@ -189,7 +189,7 @@ impl TreeText<'_> {
     /// The scene's index of the light a shadow ray went to: the kernels see
     /// only the lights that are on, in scene order.
     pub fn scene_light(&self, ray: &ProbeRay) -> Option<usize> {
-        glint_scene::observer::shadow_ray_light(self.scene, ray)
+        glint_encoding::observer::shadow_ray_light(self.scene, ray)
     }
 
     /// "object N (shape, material "name")".
@@ -197,12 +197,7 @@ impl TreeText<'_> {
         let number = index as usize + self.first_number;
         let Some(object) = self.scene.objects.get(index as usize) else { return format!("object {number}") };
         let shape = match object.shapes.as_slice() {
-            [Shape::Sphere { .. }] => "sphere".to_string(),
-            [Shape::Triangle { .. }] => "triangle".to_string(),
-            [Shape::Polygon { vertices }] => format!("{}-gon", vertices.len()),
-            [Shape::Cone { base_radius, apex_radius, .. }] if base_radius == apex_radius => "cylinder".to_string(),
-            [Shape::Cone { .. }] => "cone".to_string(),
-            [Shape::Plane { .. }] => "plane".to_string(),
+            [shape] => shape.name().to_string(),
             shapes => format!("mesh of {} primitives", shapes.len()),
         };
         let material = self.scene.materials.get(object.material).map_or("?", |m| m.name.as_str());

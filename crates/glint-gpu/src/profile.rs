@@ -3,11 +3,11 @@
 //! choices tuned for it; every other device gets the plain ones, the code as
 //! the lecture reads it. Every choice traces the same bits.
 
-use glint_scene::gpu_types::GpuScene;
+use glint_encoding::gpu_types::GpuScene;
 
 use crate::lavapipe;
 use crate::shaders::SceneArrays;
-use crate::tuning::{fits_uniform_tree, Tuning};
+use crate::tuning::{fits_uniform_tree, Tuning, WorkgroupSizes};
 
 /// Eye rays from which a one-off render on lavapipe traces packets: fewer
 /// trace sooner one at a time, whose kernel lavapipe compiles faster
@@ -71,6 +71,12 @@ pub struct DeviceProfile {
     /// lavapipe hands each thread a run of workgroups and runs SIMD groups of
     /// consecutive invocations; eye tiles need a SIMD group in one tile.
     pub spread: bool,
+    /// Whether the ray tree is walked through one call of the BVH walk
+    /// (`Tuning::one_walk_tree`): lavapipe inlines each call, and compiles
+    /// each copy (docs/decisions/024-one-walk-in-the-trace-kernel.md).
+    pub one_walk_tree: bool,
+    /// The workgroups of the kernels that trace row bands.
+    pub workgroups: WorkgroupSizes,
 }
 
 impl DeviceProfile {
@@ -99,6 +105,8 @@ impl DeviceProfile {
             // kernel compiles in the GPU process, off the page's thread.
             resolves_on_host: info.device_type == wgpu::DeviceType::Cpu && info.backend != wgpu::Backend::BrowserWebGpu,
             spread: kernels.is_some() || eye_tiles,
+            one_walk_tree: kernels.is_some(),
+            workgroups: if kernels.is_some() { WorkgroupSizes::LAVAPIPE } else { WorkgroupSizes::PLAIN },
         }
     }
 
@@ -123,6 +131,8 @@ impl DeviceProfile {
             uniform_tree: self.uniform_tree && fits_uniform_tree(scene),
             eye_tiles: false,
             spread: self.spread,
+            one_walk_tree: self.one_walk_tree,
+            workgroups: self.workgroups,
         }
     }
 
@@ -146,18 +156,31 @@ fn is_lavapipe(info: &wgpu::AdapterInfo) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn adapter(name: &str, device_type: wgpu::DeviceType, subgroups: u32) -> wgpu::AdapterInfo {
+    pub(crate) fn adapter(name: &str, device_type: wgpu::DeviceType, subgroups: u32) -> wgpu::AdapterInfo {
         let mut info = wgpu::AdapterInfo::new(device_type, wgpu::Backend::Vulkan);
         info.name = name.into();
         (info.subgroup_min_size, info.subgroup_max_size) = (subgroups, subgroups);
         info
     }
 
-    fn lavapipe(bits: u32) -> wgpu::AdapterInfo {
+    pub(crate) fn lavapipe(bits: u32) -> wgpu::AdapterInfo {
         adapter(&format!("llvmpipe (LLVM 19.1.7, {bits} bits)"), wgpu::DeviceType::Cpu, bits / 32)
+    }
+
+    fn empty_scene() -> GpuScene {
+        GpuScene {
+            prims: Vec::new(),
+            nodes: Vec::new(),
+            grids: Vec::new(),
+            bvh_root: 0,
+            materials: Vec::new(),
+            lights: Vec::new(),
+            points: Vec::new(),
+            light_count: 0,
+        }
     }
 
     const GPUS: [(&str, wgpu::DeviceType, u32); 3] = [
@@ -179,8 +202,11 @@ mod tests {
                 eye_tiles: true,
                 resolves_on_host: true,
                 spread: true,
+                one_walk_tree: true,
+                workgroups: WorkgroupSizes::LAVAPIPE,
             };
             assert_eq!(optimised, want);
+            assert!(optimised.tuning(&empty_scene()).one_walk_tree, "lavapipe walks the ray tree in one walk");
             let quick = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, true);
             let want = DeviceProfile {
                 kernels: Some(CompiledKernels { quick: true, vector_bits: Some(bits) }),
@@ -210,8 +236,11 @@ mod tests {
                     eye_tiles: false,
                     resolves_on_host: false,
                     spread: false,
+                    one_walk_tree: false,
+                    workgroups: WorkgroupSizes::PLAIN,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
+                assert_eq!(profile.tuning(&empty_scene()), Tuning::PLAIN, "{name}: the lecture's code, one ray at a time");
                 assert_eq!(profile.describe(), "plain profile");
                 assert!(!profile.packets_for(u64::MAX));
             }
@@ -223,7 +252,8 @@ mod tests {
         let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
         let profile = DeviceProfile::of(&small_groups, wgpu::Features::SUBGROUP, true);
         assert!(profile.eye_tiles && profile.packets && profile.packets_for(1) && profile.spread, "{profile:?}");
-        assert!(!profile.uniform_tree && profile.scene_arrays == SceneArrays::Buffers);
+        assert!(!profile.uniform_tree && !profile.one_walk_tree && profile.scene_arrays == SceneArrays::Buffers);
+        assert_eq!(profile.workgroups, WorkgroupSizes::PLAIN);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
     }
 

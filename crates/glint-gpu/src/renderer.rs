@@ -4,12 +4,12 @@ use bytemuck::Zeroable;
 use std::sync::{Arc, Mutex};
 use web_time::Instant;
 
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_types::{
     DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
     UNIFORM_ARRAY_BYTES,
 };
-use glint_scene::specialization::Specialization;
-use glint_scene::RayStats;
+use glint_encoding::specialization::Specialization;
+use glint_encoding::RayStats;
 use wgpu::util::DeviceExt;
 
 use crate::error_scope::ErrorScope;
@@ -137,7 +137,9 @@ impl Renderer {
         Self::with_profile(device, queue, source, profile)
     }
 
-    fn with_profile(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
+    /// A renderer that makes the choices of `profile` (tests hold one profile's
+    /// choices to another's on the same device).
+    pub fn with_profile(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
         let arrays = profile.scene_arrays;
         let scene_layout = scene_bind_group_layout(&device, arrays);
         let eye_tiles_layout = eye_tiles::bind_group_layout(&device);
@@ -182,10 +184,10 @@ impl Renderer {
         &self.profile
     }
 
-    /// Single rays reading the scene as this renderer binds it: for kernels
-    /// that serve any scene (the probe's).
+    /// Single rays reading the scene as this renderer binds it, and the ray
+    /// tree the profile walks: for kernels that serve any scene (the probe's).
     pub(crate) fn plain_tuning(&self) -> Tuning {
-        Tuning { arrays: self.profile.scene_arrays, ..Tuning::PLAIN }
+        Tuning { arrays: self.profile.scene_arrays, one_walk_tree: self.profile.one_walk_tree, ..Tuning::PLAIN }
     }
 
     /// Creates the pipelines of `kernels` for `scene` now (those not made
@@ -519,7 +521,7 @@ impl Renderer {
         pass.set_bind_group(0, &scene.scene_bind, &[]);
         pass.set_bind_group(1, &scene.eye_tiles.bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
-        let [across, down] = kernel.workgroup_size().map(|n| n * tuning.block_side(kernel));
+        let [across, down] = tuning.workgroup_size(kernel).map(|n| n * tuning.block_side(kernel));
         pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);
         Ok(())
     }
@@ -683,13 +685,13 @@ fn dispatch_linear(pass: &mut wgpu::ComputePass, groups: u32, max_per_dim: u32) 
     pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
 }
 
-/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl
-/// and scene_buffers.wgsl or scene_textures.wgsl):
+/// The resources of the trace and primary kernels (shaders/lib/bindings.wgsl,
+/// scene_arrays.wgsl and bvh_records.wgsl, or their textures in shaders/fast/):
 /// the scene uniforms, the scene's arrays (primitives, BVH records, polygon
 /// points and BVH grids) as storage buffers or textures, as `arrays` says,
 /// the materials' and lights' uniform buffers, the accumulation image, the ray
 /// counts, the dispatch parameters and the BVH's records and grids again in
-/// uniform buffers (shaders/lib/uniform_tree.wgsl).
+/// uniform buffers (shaders/fast/uniform_tree.wgsl).
 fn scene_bind_group_layout(device: &wgpu::Device, arrays: SceneArrays) -> wgpu::BindGroupLayout {
     let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
         binding,

@@ -1,10 +1,10 @@
 //! The scene's arrays as the kernels read them: textures of
 //! `SCENE_TEXTURE_WIDTH` texels a row, one record of 16 bytes a texel (a
 //! primitive takes `PRIM_TEXELS`), fetched by `prim_at` and its siblings in
-//! shaders/lib/scene_textures.wgsl. lavapipe fetches a texel per lane without the
+//! shaders/fast/scene_textures.wgsl. lavapipe fetches a texel per lane without the
 //! branch a storage buffer's bounds check costs per lane and component.
 
-use glint_scene::gpu_types::{SCENE_TEXEL_BYTES, SCENE_TEXTURE_WIDTH};
+use glint_encoding::gpu_types::{SCENE_TEXEL_BYTES, SCENE_TEXTURE_WIDTH};
 
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 

@@ -1,73 +1,31 @@
 //! WGSL composition. `shaders/kernels/` holds one file per kernel (its entry
-//! point and its own bindings), `shaders/lib/` the shared code. A file states
-//! what it uses in a line `// import: a b c` (files of `lib/`, without the
-//! extension); a kernel is the generated prelude of constants shared with the
+//! point and its own bindings), `shaders/lib/` the shared code as the lecture
+//! reads it, and `shaders/fast/` the variants a device's tuning asks for. A
+//! file states what it uses in a line `// import: a b fast/c` (files of `lib/`,
+//! or with a folder of `shaders/`, without the extension); a kernel is the generated prelude of constants shared with the
 //! host (`gpu_types::wgsl_prelude`), the flags of the scene it is
 //! specialised to (`Specialization`) and of the device's tuning (`Tuning`),
 //! followed by the files its imports reach,
-//! each once, every file after the files it imports. So a kernel's file list
+//! each once, every file after the files it imports. A `fast/` file stands in
+//! for a `lib/` file where the tuning says (`Tuning::file`). So a kernel's file list
 //! is derived from the code, and holds only what the kernel uses. A line
 //! `// generated: NAME` becomes the dispatch on primitive kinds generated from
-//! glint-scene's registry (primitive_dispatch.rs), and its file imports every
+//! glint-encoding's registry (primitive_dispatch.rs), and its file imports every
 //! kind's file. Errors are mapped back to the file and line they came from.
 //!
-//! The files are embedded at build time; `ShaderSource::Dir` reads them from
-//! disk instead (the viewer's hot reload).
+//! build.rs embeds every file under `shaders/`; `ShaderSource::Dir` reads
+//! them from disk instead (the viewer's hot reload).
 
 use std::path::{Path, PathBuf};
 
-use glint_scene::primitive_kinds::KINDS;
-use glint_scene::specialization::Specialization;
+use glint_encoding::specialization::Specialization;
 
 use crate::primitive_dispatch;
 use crate::tuning::Tuning;
 use crate::GpuError;
 
-/// Embeds every shader file, named once: the list hot reload watches.
-macro_rules! sources {
-    ($($name:literal),* $(,)?) => {
-        /// Every WGSL file, relative to `shaders/`.
-        pub const SOURCES: &[&str] = &[$($name),*];
-        const EMBEDDED: &[(&str, &str)] = &[$(($name, include_str!(concat!("../../../shaders/", $name)))),*];
-    };
-}
-
-sources![
-    "kernels/trace.wgsl",
-    "kernels/primary.wgsl",
-    "kernels/diffuse.wgsl",
-    "kernels/resolve.wgsl",
-    "kernels/present.wgsl",
-    "kernels/probe.wgsl",
-    "lib/types.wgsl",
-    "lib/bindings.wgsl",
-    "lib/scene_buffers.wgsl",
-    "lib/scene_textures.wgsl",
-    "lib/uniform_tree.wgsl",
-    "lib/camera.wgsl",
-    "lib/sample.wgsl",
-    "lib/ray_frame.wgsl",
-    "lib/sphere.wgsl",
-    "lib/triangle.wgsl",
-    "lib/plane.wgsl",
-    "lib/polygon.wgsl",
-    "lib/cone.wgsl",
-    "lib/primitive.wgsl",
-    "lib/bvh.wgsl",
-    "lib/packet.wgsl",
-    "lib/eye_bvh.wgsl",
-    "lib/eye_tiles.wgsl",
-    "lib/reflect.wgsl",
-    "lib/refract.wgsl",
-    "lib/shadow.wgsl",
-    "lib/checker.wgsl",
-    "lib/shade.wgsl",
-    "lib/spread.wgsl",
-    "lib/dispatch.wgsl",
-    "lib/ray_tree.wgsl",
-    "lib/diffuse_view.wgsl",
-    "lib/display.wgsl",
-];
+// `SOURCES` and `EMBEDDED`: every file under `shaders/`, listed by build.rs.
+include!(concat!(env!("OUT_DIR"), "/shader_files.rs"));
 
 /// The kernels, each one file of `shaders/kernels/` with one entry point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -116,17 +74,6 @@ impl Kernel {
         if self.is_specialised() { specialization } else { Specialization::ALL }
     }
 
-    /// The invocations of one workgroup across and down (`@workgroup_size`)
-    /// of a kernel that traces row bands (trace, primary, diffuse).
-    pub fn workgroup_size(self) -> [u32; 2] {
-        use glint_scene::gpu_types::{BAND_WORKGROUP_HEIGHT, BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT};
-        if self == Kernel::Primary {
-            [BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT]
-        } else {
-            [BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT]
-        }
-    }
-
     pub fn entry_point(self) -> &'static str {
         match self {
             Kernel::Trace => "trace_main",
@@ -139,22 +86,33 @@ impl Kernel {
     }
 }
 
-/// The `lib/` files `source` imports, as paths relative to `shaders/`. A
-/// file that asks for generated dispatch also imports every kind's file, in
-/// the order of names as import lines are written.
+/// The files `source` imports, as paths relative to `shaders/`: a name
+/// without a folder is in `lib/`. A file that asks for generated dispatch
+/// also imports the files of the kinds it calls, in the order of names as
+/// import lines are written.
 pub fn imports(source: &str) -> Vec<String> {
-    let mut files: Vec<String> = source
-        .lines()
-        .filter_map(|line| line.trim().strip_prefix("// import:"))
-        .flat_map(str::split_whitespace)
-        .map(|name| format!("lib/{name}.wgsl"))
+    imports_by_line(source).into_iter().map(|(_, file)| file).collect()
+}
+
+/// [`imports`], each with the number of the line that imports it (1-based).
+fn imports_by_line(source: &str) -> Vec<(usize, String)> {
+    let lines = || source.lines().enumerate().map(|(i, line)| (i + 1, line.trim()));
+    let mut files: Vec<(usize, String)> = lines()
+        .filter_map(|(n, line)| Some((n, line.strip_prefix("// import:")?)))
+        .flat_map(|(n, names)| names.split_whitespace().map(move |name| (n, import_path(name))))
         .collect();
-    if source.lines().any(|line| line.trim().starts_with(primitive_dispatch::MARKER)) {
-        files.extend(KINDS.iter().map(|k| k.file.to_string()));
-        files.sort();
-        files.dedup();
+    let pieces: Vec<(usize, &str)> = lines().filter_map(|(n, line)| Some((n, line.strip_prefix(primitive_dispatch::MARKER)?.trim()))).collect();
+    if !pieces.is_empty() {
+        files.extend(pieces.into_iter().flat_map(|(n, piece)| primitive_dispatch::files(piece).into_iter().map(move |file| (n, file.to_string()))));
+        files.sort_by(|a, b| a.1.cmp(&b.1));
+        files.dedup_by(|a, b| a.1 == b.1);
     }
     files
+}
+
+/// The file an import names: a name without a folder is in `lib/`.
+fn import_path(name: &str) -> String {
+    if name.contains('/') { format!("{name}.wgsl") } else { format!("lib/{name}.wgsl") }
 }
 
 /// `source` with each line that asks for a generated piece replaced by it.
@@ -251,27 +209,11 @@ impl Composed {
     }
 }
 
-/// The import that stands for the file of [`SceneArrays::file`].
-pub const SCENE_ARRAYS_IMPORT: &str = "lib/scene_arrays.wgsl";
-
-/// The import that stands for the file that traces a 2×2 block's eye rays
-/// (`trace_eye_block`): through its eye tile's list when the kernel is
-/// specialised to eye tiles (the only file with subgroup operations, which a
-/// device without them would refuse), else through the BVH.
-pub const EYE_BLOCK_IMPORT: &str = "lib/eye_block.wgsl";
-
-/// The files [`EYE_BLOCK_IMPORT`] stands for: through the BVH, through eye tiles.
-pub const EYE_BLOCK_FILES: [&str; 2] = ["lib/eye_bvh.wgsl", "lib/eye_tiles.wgsl"];
-
-fn eye_block_file(tuning: Tuning) -> &'static str {
-    EYE_BLOCK_FILES[usize::from(tuning.eye_tiles)]
-}
-
 /// How the kernels read the scene's arrays (primitives, BVH records and
 /// grids, polygon points): `prim_at` and its siblings, declared alike by
-/// shaders/lib/scene_buffers.wgsl and scene_textures.wgsl, one of which a
-/// kernel's import `scene_arrays` composes, over the same bindings. A renderer
-/// reads one way (its bind group layout holds that kind of binding).
+/// shaders/lib/scene_arrays.wgsl and bvh_records.wgsl, or the textures of
+/// shaders/fast/, over the same bindings. A renderer reads one way (its bind
+/// group layout holds that kind of binding).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SceneArrays {
     /// Storage buffers: what optimised kernels read fastest. lavapipe fetches
@@ -287,15 +229,6 @@ pub enum SceneArrays {
 
 impl SceneArrays {
     pub const ALL: [SceneArrays; 2] = [SceneArrays::Buffers, SceneArrays::Textures];
-
-    /// The file that declares the scene's arrays read this way.
-    pub fn file(self) -> &'static str {
-        match self {
-            SceneArrays::Buffers => "lib/scene_buffers.wgsl",
-            SceneArrays::Textures => "lib/scene_textures.wgsl",
-        }
-    }
-
 }
 
 impl ShaderSource {
@@ -321,7 +254,7 @@ impl ShaderSource {
     pub fn compose(&self, kernel: Kernel, specialization: Specialization, tuning: Tuning) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
         self.visit(kernel.file(), tuning, &mut Vec::new(), &mut order)?;
-        let mut source = glint_scene::gpu_types::wgsl_prelude();
+        let mut source = glint_encoding::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
         source.push_str(&tuning.wgsl());
         let mut lines = source.lines().count();
@@ -340,16 +273,11 @@ impl ShaderSource {
         Ok(Composed { source, files: starts })
     }
 
-    /// Appends `name` to `order` after everything it imports (depth first),
-    /// the import of the scene's arrays and that of the eye block's walk as
-    /// the files `tuning` chooses; `path` is the chain of imports being
-    /// followed, to report a cycle.
+    /// Appends `name`, or the file that `tuning` puts in its place, to
+    /// `order` after everything it imports (depth first); `path` is the chain
+    /// of imports being followed, to report a cycle.
     fn visit(&self, name: &str, tuning: Tuning, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
-        let name = match name {
-            SCENE_ARRAYS_IMPORT => tuning.arrays.file(),
-            EYE_BLOCK_IMPORT => eye_block_file(tuning),
-            name => name,
-        };
+        let name = tuning.file(name);
         if order.iter().any(|(done, _)| done == name) {
             return Ok(());
         }
@@ -358,11 +286,22 @@ impl ShaderSource {
         }
         let text = self.read(name)?;
         path.push(name.to_string());
-        for import in imports(&text) {
+        for (line, import) in imports_by_line(&text) {
+            if !self.exists(&import) {
+                return Err(GpuError::Shader(format!("shaders/{name}:{line}: imports {import}, which is no shader file")));
+            }
             self.visit(&import, tuning, path, order)?;
         }
         path.pop();
         order.push((name.to_string(), text));
         Ok(())
     }
+
+    fn exists(&self, name: &str) -> bool {
+        match self {
+            ShaderSource::Embedded => SOURCES.contains(&name),
+            ShaderSource::Dir(dir) => dir.join(name).is_file(),
+        }
+    }
 }
+

@@ -1,9 +1,11 @@
 //! How a kernel is tuned for the device: the device's half of what a kernel
-//! is compiled for (glint-scene's `Specialization` is the scene's half). The
+//! is compiled for (glint-encoding's `Specialization` is the scene's half). The
 //! device profile chooses it (profile.rs); every tuning traces the same bits
-//! (tests/packet.rs, tests/scene_arrays.rs).
+//! (tests/packet.rs, tests/scene_arrays.rs, tests/spread.rs). A tuning
+//! composes the files of shaders/lib/ as the lecture reads them, except where
+//! it puts a variant of shaders/fast/ in a file's place ([`STAND_INS`]).
 
-use glint_scene::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
+use glint_encoding::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
 
 use crate::shaders::{Kernel, SceneArrays};
 
@@ -24,42 +26,141 @@ pub struct Tuning {
     /// it has binned the scene for the view, on a device whose profile allows it.
     pub eye_tiles: bool,
     /// A dispatch's workgroups and a workgroup's invocations take their places
-    /// in the order of shaders/lib/spread.wgsl (for lavapipe's threads and
+    /// in the order of shaders/fast/spread.wgsl (for lavapipe's threads and
     /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
     pub spread: bool,
+    /// The trace and probe kernels walk the ray tree as one loop whose step is
+    /// one query, a ray of the tree or a shadow ray, through one call of the
+    /// BVH walk (shaders/fast/ray_tree.wgsl), which lavapipe compiles once.
+    pub one_walk_tree: bool,
+    /// The workgroups of the kernels that trace row bands.
+    pub workgroups: WorkgroupSizes,
 }
+
+/// The invocations of a workgroup, across and down, of the kernels that trace
+/// row bands: trace and diffuse, and primary (as wide, its own height). The
+/// prelude declares them (`Tuning::wgsl`) and the host dispatches by them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct WorkgroupSizes {
+    pub width: u32,
+    pub band_height: u32,
+    pub primary_height: u32,
+}
+
+impl WorkgroupSizes {
+    /// 64 invocations: two 32-lane warps or one 64-lane wavefront, the usual
+    /// size of a GPU's two-dimensional compute workgroups.
+    pub const PLAIN: WorkgroupSizes = WorkgroupSizes { width: 8, band_height: 8, primary_height: 8 };
+    /// lavapipe's: its primary kernel's are half as tall, since with packets
+    /// each of their invocations traces two rows.
+    pub const LAVAPIPE: WorkgroupSizes = WorkgroupSizes { width: 8, band_height: 8, primary_height: 4 };
+
+    pub fn band(self) -> [u32; 2] {
+        [self.width, self.band_height]
+    }
+
+    pub fn primary(self) -> [u32; 2] {
+        [self.width, self.primary_height]
+    }
+
+    /// "8x8-8x4": the band kernels' size, then the primary kernel's.
+    fn name(self) -> String {
+        let [[a, b], [c, d]] = [self.band(), self.primary()];
+        format!("{a}x{b}-{c}x{d}")
+    }
+}
+
+/// A file of shaders/fast/ that a tuning composes in place of one of
+/// shaders/lib/, declaring the same functions (tests/wgsl.rs checks).
+#[derive(Debug, Clone, Copy)]
+pub struct StandIn {
+    pub plain: &'static str,
+    pub fast: &'static str,
+    /// Whether a tuning composes `fast` in place of `plain`.
+    pub when: fn(Tuning) -> bool,
+}
+
+/// Every stand-in; the first that a tuning asks for takes the plain file's place.
+pub const STAND_INS: [StandIn; 7] = [
+    StandIn { plain: "lib/scene_arrays.wgsl", fast: "fast/scene_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
+    StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/uniform_tree.wgsl", when: |t| t.uniform_tree },
+    StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/bvh_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
+    StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_tiles.wgsl", when: |t| t.packets && t.eye_tiles },
+    StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_bvh.wgsl", when: |t| t.packets },
+    StandIn { plain: "lib/band_order.wgsl", fast: "fast/spread.wgsl", when: |t| t.spread },
+    StandIn { plain: "lib/ray_tree.wgsl", fast: "fast/ray_tree.wgsl", when: |t| t.one_walk_tree },
+];
 
 impl Tuning {
     /// One ray at a time through the BVH, everything in storage buffers: the
     /// code as the lecture reads it, and what any device runs.
-    pub const PLAIN: Tuning = Tuning { arrays: SceneArrays::Buffers, packets: false, uniform_tree: false, eye_tiles: false, spread: false };
+    pub const PLAIN: Tuning = Tuning {
+        arrays: SceneArrays::Buffers,
+        packets: false,
+        uniform_tree: false,
+        eye_tiles: false,
+        spread: false,
+        one_walk_tree: false,
+        workgroups: WorkgroupSizes::PLAIN,
+    };
 
-    /// Every tuning a profile can choose (eye tiles only over storage
-    /// buffers): for tests and dumps of every kernel.
+    /// Every choice of lavapipe's profile at once, eye tiles included: what
+    /// tests hold the plain tuning's bits to.
+    pub const LAVAPIPE: Tuning = Tuning {
+        arrays: SceneArrays::Buffers,
+        packets: true,
+        uniform_tree: true,
+        eye_tiles: true,
+        spread: true,
+        one_walk_tree: true,
+        workgroups: WorkgroupSizes::LAVAPIPE,
+    };
+
+    /// Every tuning a profile can choose, and every one tests set on
+    /// lavapipe (eye tiles only over storage buffers): for tests and dumps of
+    /// every kernel.
     pub fn all() -> Vec<Tuning> {
         let mut all = Vec::new();
         for arrays in SceneArrays::ALL {
-            for bits in 0..16u32 {
-                let [packets, uniform_tree, eye_tiles, spread] = [0, 1, 2, 3].map(|b| bits & (1 << b) != 0);
+            for bits in 0..32u32 {
+                let [packets, uniform_tree, eye_tiles, spread, one_walk_tree] = [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
                 // Eye tiles hand SIMD groups blocks of one tile in spread order.
                 if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread });
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree, workgroups: WorkgroupSizes::LAVAPIPE });
                 }
             }
+        }
+        // The plain profile's: single rays in row order, or, where subgroups
+        // fit, packets in spread order, with or without the view's eye tiles.
+        for (packets, eye_tiles, spread) in [(false, false, false), (true, false, true), (true, true, true)] {
+            all.push(Tuning { packets, eye_tiles, spread, ..Tuning::PLAIN });
         }
         all
     }
 
-    /// A name for file names: its choices joined by dashes ("buffers" alone
-    /// for the plain tuning).
+    /// A name for file names: its choices joined by dashes, workgroup sizes
+    /// other than the plain ones last ("buffers" alone for the plain tuning).
     pub fn name(self) -> String {
         let arrays = match self.arrays {
             SceneArrays::Buffers => "buffers",
             SceneArrays::Textures => "textures",
         };
-        let choices =
-            [(self.packets, "packets"), (self.uniform_tree, "uniform-tree"), (self.eye_tiles, "eye-tiles"), (self.spread, "spread")];
-        std::iter::once(arrays).chain(choices.iter().filter(|(on, _)| *on).map(|(_, name)| *name)).collect::<Vec<_>>().join("-")
+        let choices = [
+            (self.packets, "packets"),
+            (self.uniform_tree, "uniform-tree"),
+            (self.eye_tiles, "eye-tiles"),
+            (self.spread, "spread"),
+            (self.one_walk_tree, "one-walk-tree"),
+        ];
+        let chosen = choices.iter().filter(|(on, _)| *on).map(|(_, name)| name.to_string());
+        let workgroups = (self.workgroups != WorkgroupSizes::PLAIN).then(|| self.workgroups.name());
+        std::iter::once(arrays.to_string()).chain(chosen).chain(workgroups).collect::<Vec<_>>().join("-")
+    }
+
+    /// The file composed for the import of `name`: the stand-in this tuning
+    /// asks for, else `name` itself.
+    pub fn file(self, name: &str) -> &str {
+        STAND_INS.iter().find(|s| s.plain == name && (s.when)(self)).map_or(name, |s| s.fast)
     }
 
     /// Whether its kernels need the device's subgroup operations.
@@ -70,13 +171,23 @@ impl Tuning {
     /// What `kernel` is compiled with when a scene's kernels are tuned this
     /// way: only what changes its code, so that its renders share one
     /// pipeline (and one entry of a driver's disk cache) whatever else
-    /// differs. Only the primary kernel traces packets.
+    /// differs. Only the primary kernel traces packets, only the trace and
+    /// probe kernels walk the ray tree, and only the kernels that trace row
+    /// bands have their workgroup sizes.
     pub fn for_kernel(self, kernel: Kernel) -> Tuning {
         match kernel {
-            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, ..self },
-            _ if kernel.is_specialised() => Tuning { packets: false, eye_tiles: false, ..self },
-            _ => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
+            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, one_walk_tree: false, ..self },
+            Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, one_walk_tree: false, ..self },
+            Kernel::Trace => Tuning { packets: false, eye_tiles: false, ..self },
+            Kernel::Probe => Tuning { packets: false, eye_tiles: false, workgroups: WorkgroupSizes::PLAIN, ..self },
+            Kernel::Resolve | Kernel::Present => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
         }
+    }
+
+    /// The invocations of one workgroup of `kernel`, a kernel that traces row
+    /// bands, across and down (its `@workgroup_size`).
+    pub fn workgroup_size(self, kernel: Kernel) -> [u32; 2] {
+        if kernel == Kernel::Primary { self.workgroups.primary() } else { self.workgroups.band() }
     }
 
     /// The side of the square block of pixels one invocation of `kernel`
@@ -87,7 +198,12 @@ impl Tuning {
 
     /// The WGSL constants that carry it, appended to a kernel's prelude.
     pub fn wgsl(self) -> String {
-        format!("const UNIFORM_TREE: bool = {};\nconst PACKETS: bool = {};\nconst SPREAD: bool = {};\n", self.uniform_tree, self.packets, self.spread)
+        let WorkgroupSizes { width, band_height, primary_height } = self.workgroups;
+        format!(
+            "const PACKETS: bool = {};\n\
+             const BAND_WORKGROUP_WIDTH: u32 = {width}u;\nconst BAND_WORKGROUP_HEIGHT: u32 = {band_height}u;\nconst PRIMARY_WORKGROUP_HEIGHT: u32 = {primary_height}u;\n",
+            self.packets
+        )
     }
 }
 
@@ -112,7 +228,7 @@ impl std::fmt::Display for Tuning {
 mod tests {
     use super::*;
     use bytemuck::Zeroable;
-    use glint_scene::gpu_bvh::{GpuGrid, GpuNode};
+    use glint_encoding::gpu_bvh::{GpuGrid, GpuNode};
 
     #[test]
     fn a_tree_that_fits_a_uniform_buffer_is_read_from_one() {
@@ -133,19 +249,59 @@ mod tests {
         scene.grids.push(GpuGrid::zeroed());
         assert!(!fits_uniform_tree(&scene), "one grid too many");
         let tuned = Tuning { uniform_tree: true, ..Tuning::PLAIN };
-        assert!(tuned.wgsl().contains("const UNIFORM_TREE: bool = true;") && tuned.wgsl().contains("const PACKETS: bool = false;"));
+        assert_eq!(tuned.file("lib/bvh_records.wgsl"), "fast/uniform_tree.wgsl");
+        assert_eq!(Tuning { arrays: SceneArrays::Textures, ..tuned }.file("lib/bvh_records.wgsl"), "fast/uniform_tree.wgsl");
+        assert_eq!(Tuning::PLAIN.file("lib/bvh_records.wgsl"), "lib/bvh_records.wgsl");
+    }
+
+    #[test]
+    fn the_plain_tuning_composes_the_lecture_files_and_every_stand_in_is_some_tunings() {
+        for s in STAND_INS {
+            assert!(s.plain.starts_with("lib/") && s.fast.starts_with("fast/"), "{s:?}");
+            assert_eq!(Tuning::PLAIN.file(s.plain), s.plain);
+            assert!(Tuning::all().iter().any(|t| t.file(s.plain) == s.fast), "no tuning composes {}", s.fast);
+        }
     }
 
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
-        let fast = Tuning { arrays: SceneArrays::Buffers, packets: true, uniform_tree: true, eye_tiles: true, spread: true };
-        assert_eq!(fast.for_kernel(Kernel::Primary), fast);
+        let fast = Tuning::LAVAPIPE;
+        assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, ..fast });
         assert_eq!(fast.block_side(Kernel::Primary), 2);
-        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { uniform_tree: true, spread: true, ..Tuning::PLAIN });
+        let trace = Tuning { uniform_tree: true, spread: true, one_walk_tree: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
+        assert_eq!(fast.for_kernel(Kernel::Trace), trace);
+        assert_eq!(fast.for_kernel(Kernel::Probe), Tuning { workgroups: WorkgroupSizes::PLAIN, ..trace }, "the probe traces no bands");
+        assert_eq!(fast.for_kernel(Kernel::Diffuse), Tuning { one_walk_tree: false, ..trace });
         assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
         assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
         let no_packets = Tuning { packets: false, ..fast };
         assert!(!no_packets.for_kernel(Kernel::Primary).eye_tiles, "eye tiles are walked by packets");
         assert_eq!(no_packets.block_side(Kernel::Primary), 1);
+    }
+
+    #[test]
+    fn the_prelude_declares_the_workgroup_sizes_the_host_dispatches_by() {
+        for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+            let tuning = Tuning { workgroups, ..Tuning::PLAIN };
+            let [[width, band_height], [_, primary_height]] = [tuning.workgroup_size(Kernel::Trace), tuning.workgroup_size(Kernel::Primary)];
+            assert_eq!(tuning.workgroup_size(Kernel::Diffuse), [width, band_height]);
+            for (name, value) in [("BAND_WORKGROUP_WIDTH", width), ("BAND_WORKGROUP_HEIGHT", band_height), ("PRIMARY_WORKGROUP_HEIGHT", primary_height)] {
+                assert!(tuning.wgsl().contains(&format!("const {name}: u32 = {value}u;")), "{}", tuning.wgsl());
+            }
+        }
+        assert_eq!(Tuning { workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN }.name(), "buffers-8x8-8x4");
+        assert_eq!(Tuning::PLAIN.name(), "buffers");
+    }
+
+    #[test]
+    fn every_workgroup_deals_2x2_blocks_and_covers_whole_eye_tiles() {
+        use glint_encoding::gpu_types::{EYE_TILE_HEIGHT, EYE_TILE_WIDTH};
+        for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
+            for [across, down] in [workgroups.band(), workgroups.primary()] {
+                assert!(across % 2 == 0 && down % 2 == 0, "spread_invocation deals places in 2x2 blocks: {workgroups:?}");
+            }
+            let [across, down] = workgroups.primary().map(|n| 2 * n);
+            assert!(across % EYE_TILE_WIDTH == 0 && down % EYE_TILE_HEIGHT == 0, "a packet workgroup's SIMD groups stay in one tile: {workgroups:?}");
+        }
     }
 }

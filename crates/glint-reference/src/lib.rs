@@ -24,7 +24,7 @@ mod ray_tree;
 mod tests;
 
 use glam::DVec3;
-pub use glint_scene::RayStats;
+pub use glint_encoding::RayStats;
 use glint_scene::{LightKind, Material, Scene, ShadowMode, SpecularModel};
 
 use geometry::Geom;

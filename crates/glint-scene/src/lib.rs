@@ -1,32 +1,24 @@
-//! Glint's scene model and everything that needs no GPU: the loaders (TOML, NFF,
-//! OBJ), camera math, the BVH builder and the packing of a scene into the plain
-//! arrays the WGSL kernels read.
+//! Glint's scene model: the loaders (TOML, NFF, OBJ), camera math,
+//! validation and the BVH builder. How the kernels read a scene is
+//! glint-encoding's business.
 
 pub mod animation;
 pub mod bvh;
 mod camera;
 pub mod camera_frame;
 mod error;
-pub mod eye_tiles;
-pub mod gpu_bvh;
-pub mod gpu_types;
 pub mod icosphere;
 mod light;
 mod material;
 pub mod nff;
-pub mod observer;
 pub mod opened_files;
 pub mod obj;
 pub mod polygon_split;
-pub mod primitive_kinds;
-mod ray_stats;
 mod scene;
 mod shape;
 pub mod spd;
-pub mod specialization;
 pub mod suggest;
-#[cfg(test)]
-mod test_rng;
+pub mod test_rng;
 mod toml_errors;
 pub mod toml_scene;
 pub mod toml_write;
@@ -37,9 +29,8 @@ pub use camera::{Basis, Camera, Projection, Ray};
 pub use error::{LoadError, Location};
 pub use light::{Attenuation, Light, LightKind};
 pub use material::{Checker, Material, SpecularModel};
-pub use ray_stats::RayStats;
-pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
-pub use shape::{plane_axes, Shape, ShapeProblem};
+pub use scene::{DepthCue, Object, RenderSettings, Scene, ShadowMode, MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_MATERIALS};
+pub use shape::{plane_axes, polygon_normal, Shape, ShapeProblem, SHAPE_NAMES};
 
 use std::path::Path;
 

@@ -80,6 +80,12 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 /// The deepest ray tree the GPU kernel's explicit stack holds.
 pub const MAX_DEPTH_LIMIT: u32 = 16;
 
+/// The most lights a scene may have, on or off: as many as the kernels'
+/// uniform buffer holds (glint-encoding's gpu_types.rs checks the two agree).
+pub const MAX_LIGHTS: u32 = 1365;
+/// The most materials a scene may have, for the same reason.
+pub const MAX_MATERIALS: u32 = 585;
+
 impl Default for RenderSettings {
     fn default() -> Self {
         Self {

@@ -31,6 +31,10 @@ pub enum ShapeProblem {
 /// its size, is reported as non-planar (and kept).
 pub const NON_PLANAR_TOLERANCE: f32 = 1e-4;
 
+/// What every tool calls a shape (`glint check`, the probe, the viewer), in
+/// the order `glint check` counts them.
+pub const SHAPE_NAMES: [&str; 6] = ["sphere", "triangle", "polygon", "cone", "cylinder", "infinite plane"];
+
 /// One geometric primitive.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
@@ -120,6 +124,19 @@ impl Shape {
             return Err(ShapeProblem::Degenerate("degenerate rectangle (no area) skipped".into()));
         }
         finite(Shape::Polygon { vertices })
+    }
+
+    /// What every tool calls the shape: a cone of equal radii is a cylinder.
+    pub fn name(&self) -> &'static str {
+        let [sphere, triangle, polygon, cone, cylinder, plane] = SHAPE_NAMES;
+        match self {
+            Shape::Sphere { .. } => sphere,
+            Shape::Triangle { .. } => triangle,
+            Shape::Polygon { .. } => polygon,
+            Shape::Cone { base_radius, apex_radius, .. } if base_radius == apex_radius => cylinder,
+            Shape::Cone { .. } => cone,
+            Shape::Plane { .. } => plane,
+        }
     }
 
     /// Whether the shape has bounds, so a place in the BVH: all but an infinite plane.

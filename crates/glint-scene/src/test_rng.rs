@@ -1,4 +1,4 @@
-//! Random numbers for the crate's tests.
+//! Random numbers for tests, of this crate and of the crates built on it.
 
 use glam::Vec3;
 

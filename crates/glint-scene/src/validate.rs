@@ -3,10 +3,8 @@
 //! checked here, on the host, before anything is uploaded. A violation is an
 //! error naming the problem, never a panic and never an out-of-bounds access.
 
-use crate::bvh::Bvh;
-use crate::gpu_bvh::MAX_NODES;
-use crate::gpu_types::{BVH_STACK, MAX_LIGHTS, MAX_MATERIALS};
-use crate::{Scene, Shape, MAX_DEPTH_LIMIT};
+use crate::bvh::{Bvh, MAX_DEPTH as BVH_STACK};
+use crate::{Scene, Shape, MAX_DEPTH_LIMIT, MAX_LIGHTS, MAX_MATERIALS};
 
 /// A scene the kernels cannot be given.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -84,12 +82,10 @@ impl Scene {
 }
 
 impl Bvh {
-    /// Checks that the tree fits the kernel's layout and traversal stack.
+    /// Checks that the tree fits the kernel's traversal stack, which the
+    /// builder's depth bound sizes (glint-encoding checks its record count).
     pub fn validate(&self) -> Result<(), Invalid> {
-        if self.nodes.len() > MAX_NODES {
-            return Err(Invalid::TooMany { what: "BVH nodes", count: self.nodes.len(), max: MAX_NODES });
-        }
-        if self.depth() > BVH_STACK as usize {
+        if self.depth() > BVH_STACK {
             return Err(Invalid::TooDeep(self.depth()));
         }
         Ok(())
@@ -169,7 +165,7 @@ mod tests {
     #[test]
     fn a_tree_deeper_than_the_stack_is_an_error_not_a_panic() {
         // A chain: every interior node's second child is the next interior node.
-        let levels = BVH_STACK as usize + 8;
+        let levels = BVH_STACK + 8;
         let node = |left_or_first: u32, count: u32| crate::bvh::Node { min: [0.0; 3], left_or_first, max: [1.0; 3], count };
         let mut nodes = Vec::new();
         for level in 0..levels as u32 {
@@ -181,7 +177,7 @@ mod tests {
         nodes.push(node(0, 1));
         nodes.push(node(0, 1));
         let bvh = Bvh { nodes, order: vec![0] };
-        assert!(bvh.depth() > BVH_STACK as usize);
-        assert_eq!(bvh.gpu().map(|_| ()), Err(Invalid::TooDeep(bvh.depth())));
+        assert!(bvh.depth() > BVH_STACK);
+        assert_eq!(bvh.validate(), Err(Invalid::TooDeep(bvh.depth())));
     }
 }

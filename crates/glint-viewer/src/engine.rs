@@ -10,13 +10,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use web_time::Instant;
+use glint_encoding::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
 use glint_gpu::interactive::{PresentPipeline, PresentTarget, RayCounter};
 use glint_gpu::schedule::{BandScheduler, INTERACTIVE_TARGET};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, GpuError, Prepared, RenderOptions, Renderer};
-use glint_scene::gpu_types::{GpuLight, GpuMaterial, SceneUniforms, View};
 use glint_scene::Scene;
+use web_time::Instant;
 
 /// Bands submitted but not finished; more would only queue up latency.
 const MAX_IN_FLIGHT: usize = 2;
@@ -253,9 +253,9 @@ mod tests {
     use std::path::Path;
     use std::sync::Arc;
 
+    use glint_encoding::gpu_types::View;
     use glint_gpu::shaders::{Kernel, ShaderSource};
     use glint_gpu::Tuning;
-    use glint_scene::gpu_types::View;
 
     use super::{Canvas, Kernels};
 

@@ -10,9 +10,9 @@ use std::time::Duration;
 use web_time::Instant;
 use egui::{Pos2, Rect, Vec2};
 use glam::Vec3;
+use glint_encoding::gpu_types::{self, View};
 use glint_gpu::schedule::BandScheduler;
 use glint_gpu::{GpuError, PngBits, Readback};
-use glint_scene::gpu_types::{self, View};
 use glint_scene::Camera;
 
 use crate::app::one_line;

@@ -141,18 +141,15 @@ neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set.";
 
 /// How eframe opens its device for Glint: an adapter chosen as `glint render`
 /// chooses one (a real GPU first, `GLINT_ADAPTER` pins one by name; only
-/// adapters with compute shaders qualify), with the adapter's own limits rather
-/// than wgpu's conservative defaults.
+/// adapters with compute shaders qualify), with what its device profile uses.
+/// eframe's device is never opened again, so it gets the adapter's limits of
+/// a scene's size at once.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor.backends = glint_gpu::backends();
     setup.native_adapter_selector = Some(Arc::new(choose_adapter));
-    setup.device_descriptor = Arc::new(|adapter| wgpu::DeviceDescriptor {
-        label: Some("glint view"),
-        required_limits: adapter.limits(),
-        ..Default::default()
-    });
+    setup.device_descriptor = Arc::new(|adapter| glint_gpu::device_descriptor(adapter, glint_gpu::SceneLimits::Adapter));
     egui_wgpu::WgpuSetup::CreateNew(setup)
 }
 

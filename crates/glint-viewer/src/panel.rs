@@ -6,8 +6,8 @@ use std::ops::RangeInclusive;
 
 use egui::{CollapsingHeader, ComboBox, Slider, SliderClamping, Ui};
 use glam::Vec3;
+use glint_encoding::gpu_types::View;
 use glint_gpu::ToneMap;
-use glint_scene::gpu_types::View;
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::{Attenuation, Checker, DepthCue, Light, LightKind, Projection, ShadowMode, Shape, SpecularModel};
 
@@ -46,16 +46,6 @@ fn point(ui: &mut Ui, p: &mut Vec3, lo: Vec3, hi: Vec3) {
         let v = &mut p[axis];
         let range = lo[axis].min(*v)..=hi[axis].max(*v);
         ui.add(slider(v, range, name));
-    }
-}
-
-fn kind_name(shape: &Shape) -> &'static str {
-    match shape {
-        Shape::Sphere { .. } => "sphere",
-        Shape::Triangle { .. } => "triangle",
-        Shape::Polygon { .. } => "polygon",
-        Shape::Cone { .. } => "cone",
-        Shape::Plane { .. } => "plane",
     }
 }
 
@@ -289,7 +279,7 @@ impl ViewerApp {
         CollapsingHeader::new("Selected object").default_open(true).show(ui, |ui| {
             let Some(doc) = self.document.loaded.as_mut() else { return };
             let Some(object) = doc.scene.objects.get(index) else { return };
-            let kind = object.shapes.first().map_or("empty", kind_name);
+            let kind = object.shapes.first().map_or("empty", Shape::name);
             let m = object.material;
             let users = doc.scene.objects.iter().filter(|o| o.material == m).count();
             ui.label(format!("Object {}: {kind}, {} primitive(s)", index + 1, object.shapes.len()));

@@ -2,8 +2,8 @@
 //! specular model) and how it is shown (exposure, tone map, resolution), and the
 //! render options each gives the kernels.
 
+use glint_encoding::gpu_types::View;
 use glint_gpu::{RenderOptions, ToneMap};
-use glint_scene::gpu_types::View;
 use glint_scene::{Material, SpecularModel};
 
 use crate::engine::Canvas;

@@ -5,7 +5,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use glint_scene::gpu_types::View;
+use glint_encoding::gpu_types::View;
 use glint_scene::Scene;
 
 use crate::engine::Kernels;

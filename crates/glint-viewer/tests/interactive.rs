@@ -5,9 +5,9 @@
 use std::path::Path;
 use std::sync::OnceLock;
 
+use glint_encoding::gpu_types::{self, View};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, GpuError, Image, RenderOptions, Renderer, SceneBuffers};
-use glint_scene::gpu_types::{self, View};
 use glint_scene::{LightKind, Scene};
 
 const SCENE: &str = r#"

@@ -10,9 +10,9 @@ use egui::{Key, Modifiers, Pos2};
 use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
 use glam::{DVec2, DVec3};
+use glint_encoding::observer::{clip_to_box, Ink, RayId};
 use glint_gpu::shaders::ShaderSource;
 use glint_scene::camera_frame::CameraFrame;
-use glint_scene::observer::{clip_to_box, Ink, RayId};
 use glint_viewer::ViewerApp;
 use support::{click_with, harness, screen_pos, settle, wait_for, write_scene, RED_SPHERE, SCENE};
 

@@ -13,7 +13,7 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec3A};
 
-/// The deepest tree the builder makes; the WGSL traversal stack is sized by it.
+/// The deepest tree the builder makes; the kernels' traversal stack is sized by it.
 pub const MAX_DEPTH: usize = 32;
 
 /// The most primitives the builder puts in a leaf: small leaves keep the GPU's

@@ -66,7 +66,7 @@ pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
 }
 
 /// The tables and keys of the format, for errors about unknown keys.
-const SCHEMA: toml_errors::Schema = toml_errors::Schema { fields: schema_fields, object_keys };
+const SCHEMA: toml_errors::Schema = toml_errors::Schema { fields: schema_fields, object_keys: object::object_keys };
 
 fn schema_fields(path: &[&str]) -> Option<&'static [&'static str]> {
     use toml_errors::fields_of;
@@ -86,20 +86,6 @@ fn schema_fields(path: &[&str]) -> Option<&'static [&'static str]> {
         ["animation", "camera"] => fields_of::<CameraKeyDef>(),
         ["animation", "light"] => fields_of::<LightKeyDef>(),
         ["animation", "orbit"] => fields_of::<OrbitDef>(),
-        _ => return None,
-    })
-}
-
-/// The keys an object of type `kind` takes besides `type` and `material`.
-pub(super) fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
-    Some(match kind {
-        "sphere" => &["center", "radius"],
-        "triangle" => &["vertices", "normals"],
-        "polygon" => &["vertices"],
-        "plane" => &["point", "normal", "size"],
-        "cone" | "cylinder" => &["base", "base_radius", "apex", "apex_radius"],
-        "mesh" => &["path", "translate", "rotate", "scale", "matrix"],
-        "icosphere" => &["center", "radius", "subdivisions", "displacement"],
         _ => return None,
     })
 }

@@ -1,5 +1,6 @@
-//! Building one `[[object]]` of a TOML scene: checking which keys its type
-//! takes, then making its shape (or, for an icosphere, its triangles).
+//! The object types of a TOML scene and the keys each takes, and building one
+//! `[[object]]`: checking its keys, then making its shape (or, for an
+//! icosphere, its triangles).
 
 use std::collections::BTreeMap;
 
@@ -9,11 +10,28 @@ use toml::Spanned;
 use super::build::Builder;
 use super::defs::ObjectDef;
 use super::mesh::Meshes;
-use super::object_keys;
 use super::values::Num;
 use crate::icosphere;
 use crate::shape::ShapeProblem;
 use crate::{LoadError, Material, Object, Shape};
+
+/// Each object type and the keys it takes besides `type` and `material`: what
+/// checking an object and the errors about unknown keys both read.
+const OBJECT_TYPES: [(&str, &[&str]); 8] = [
+    ("sphere", &["center", "radius"]),
+    ("triangle", &["vertices", "normals"]),
+    ("polygon", &["vertices"]),
+    ("plane", &["point", "normal", "size"]),
+    ("cone", &["base", "base_radius", "apex", "apex_radius"]),
+    ("cylinder", &["base", "base_radius", "apex", "apex_radius"]),
+    ("mesh", &["path", "translate", "rotate", "scale", "matrix"]),
+    ("icosphere", &["center", "radius", "subdivisions", "displacement"]),
+];
+
+/// The keys an object of type `kind` takes besides `type` and `material`.
+pub(super) fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
+    OBJECT_TYPES.iter().find(|(name, _)| *name == kind).map(|(_, keys)| *keys)
+}
 
 impl Builder<'_> {
     pub(super) fn object(
@@ -35,10 +53,9 @@ impl Builder<'_> {
         let material = named.unwrap_or(0);
         let kind = def.kind.get_ref().as_str();
         let Some(allowed) = object_keys(kind) else {
-            return Err(self.error_at(
-                &def.kind,
-                format!("type: unknown object type `{kind}`, expected sphere, triangle, polygon, plane, cone, cylinder, mesh or icosphere"),
-            ));
+            let (last, others) = OBJECT_TYPES.split_last().expect("there are object types");
+            let others: Vec<&str> = others.iter().map(|(name, _)| *name).collect();
+            return Err(self.error_at(&def.kind, format!("type: unknown object type `{kind}`, expected {} or {}", others.join(", "), last.0)));
         };
         let present = [
             ("center", def.center.is_some()),
@@ -169,5 +186,20 @@ impl Builder<'_> {
         };
         objects.push(Object { material, shapes: vec![shape] });
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeSet;
+
+    use super::{ObjectDef, OBJECT_TYPES};
+
+    /// The types take, between them, exactly the keys an object can hold.
+    #[test]
+    fn the_types_take_exactly_the_keys_an_object_holds() {
+        let taken: BTreeSet<&str> = OBJECT_TYPES.iter().flat_map(|(_, keys)| keys.iter().copied()).chain(["type", "material"]).collect();
+        let held: BTreeSet<&str> = crate::toml_errors::fields_of::<ObjectDef>().iter().copied().collect();
+        assert_eq!(taken, held);
     }
 }

@@ -264,6 +264,10 @@ fn unknown_keys_name_the_first_in_the_file_and_the_nearest_valid_key() {
         ("[ambient]\nfov = 3\n", "test.toml:11:1: unknown key `fov` in [ambient]: `fov` belongs in [camera]"),
         ("[[light]]\ntype = \"point\"\npostion = [0, 0, 0]\n", "test.toml:12:1: unknown key `postion` in a point light; did you mean `position`?"),
         ("[material.red]\ncolour = 1\n", "test.toml:11:1: unknown key `colour` in [material.red]; did you mean `color`?"),
+        (
+            "[[object]]\ntype = \"torus\"\n",
+            "test.toml:11:8: type: unknown object type `torus`, expected sphere, triangle, polygon, plane, cone, cylinder, mesh or icosphere",
+        ),
     ] {
         assert_eq!(error(extra), want);
     }

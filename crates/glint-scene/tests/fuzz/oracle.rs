@@ -6,11 +6,12 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 
 use glam::Vec3;
-use glint_scene::bvh::Bvh;
-use glint_scene::gpu_types::{
+use glint_encoding::gpu_bvh::GpuBvh;
+use glint_encoding::gpu_types::{
     pack, plane_range, primitive_bounds, scene_uniforms, GpuScene, BVH_STACK, LEAF, PRIM_PLANE, PRIM_POLYGON, PRIM_TRIANGLE,
     RIGHT_LEAF,
 };
+use glint_scene::bvh::Bvh;
 use glint_scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
 use glint_scene::{Attenuation, LightKind, LoadError, Projection, Scene, Shape};
 use proptest::prelude::*;
@@ -140,7 +141,7 @@ pub(crate) fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     // inside its array.
     prop_assert!(scene.validate().is_ok(), "a loaded scene fails validation: {:?}", scene.validate());
     let bvh = Bvh::build(&primitive_bounds(scene));
-    let gpu_bvh = bvh.gpu().map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let gpu_bvh = GpuBvh::encode(&bvh).map_err(|e| TestCaseError::fail(e.to_string()))?;
     let packed = pack(scene, &bvh.order, gpu_bvh);
     check_indices(&packed)?;
     check_planes(&packed, plane_range(scene), scene.primitive_count())?;

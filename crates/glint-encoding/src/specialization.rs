@@ -11,7 +11,8 @@
 //! of the others (each becomes a `const` in the kernel's prelude, whose dead
 //! branches the driver's compiler removes before it generates code).
 
-use crate::MAX_DEPTH_LIMIT;
+use glint_scene::MAX_DEPTH_LIMIT;
+
 use crate::gpu_types::{
     GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
     MATERIAL_METALLIC, PRIM_TRIANGLE,

@@ -1,14 +1,12 @@
-// The scene's arrays in textures of SCENE_TEXTURE_WIDTH texels of 16 bytes
-// a row, what kernels compiled without optimisation read fastest: the same
-// functions as scene_buffers.wgsl, from the same bytes.
+// The scene's primitives and polygon points in textures of
+// SCENE_TEXTURE_WIDTH texels of 16 bytes a row, for kernels compiled without
+// optimisation (docs/decisions/034-scene-textures.md): the functions of
+// lib/scene_arrays.wgsl, from the same bytes.
 // import: types
 
 @group(0) @binding(1) var prim_texels: texture_2d<u32>;
-@group(0) @binding(2) var node_texels: texture_2d<u32>;
 // Polygon vertices and triangle vertex normals (xyz).
 @group(0) @binding(5) var point_texels: texture_2d<u32>;
-// The grids of the BVH's interior records, for the nodes traversal returns to.
-@group(0) @binding(8) var grid_texels: texture_2d<u32>;
 
 // Where texel `index` of a scene texture is: row-major, SCENE_TEXTURE_WIDTH a row.
 fn texel_of(index: u32) -> vec2<u32> {
@@ -30,16 +28,6 @@ fn prim_at(i: u32) -> GpuPrim {
         words.z,
         words.w,
     );
-}
-
-fn node_in_arrays(i: u32) -> GpuNode {
-    let t = textureLoad(node_texels, texel_of(i), 0);
-    return GpuNode(t.xyz, t.w);
-}
-
-fn grid_in_arrays(i: u32) -> GpuGrid {
-    let t = textureLoad(grid_texels, texel_of(i), 0);
-    return GpuGrid(bitcast<vec3<f32>>(t.xyz), t.w);
 }
 
 fn point_at(i: u32) -> vec4<f32> {

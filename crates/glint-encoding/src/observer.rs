@@ -4,10 +4,10 @@
 //! --observer` into a PNG; both take the geometry and the inks from here.
 
 use glam::{DVec2, DVec3, Vec3};
+use glint_scene::camera_frame::CameraFrame;
+use glint_scene::{Camera, LightKind, Projection, Scene};
 
-use crate::camera_frame::CameraFrame;
 use crate::gpu_types::{ProbeRay, NO_RAY, PROBE_BLOCKED, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW};
-use crate::{Camera, LightKind, Projection, Scene};
 
 /// The window's pixel grid is drawn when a pixel looks at least this many
 /// of the observer's pixels across.

@@ -1,9 +1,9 @@
 use bytemuck::Zeroable;
 use glam::{DVec3, Vec3};
+use glint_encoding::gpu_types::{GpuPrim, PROJECTION_PERSPECTIVE};
+use glint_scene::test_rng::Rng;
 
 use super::*;
-use crate::gpu_types::{GpuPrim, PROJECTION_PERSPECTIVE};
-use crate::test_rng::Rng;
 
 const WIDTH: u32 = 48;
 const HEIGHT: u32 = 36;

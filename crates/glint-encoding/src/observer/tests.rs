@@ -18,7 +18,7 @@ fn observer() -> Observer {
 
 fn scene() -> Scene {
     let text = "[image]\nwidth = 2\nheight = 2\n\n[camera]\neye = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 90\n\n[[light]]\ntype = \"point\"\nposition = [0, 3, 0]\n\n[[object]]\ntype = \"sphere\"\ncenter = [2, 2, -5]\nradius = 1\n";
-    crate::toml_scene::parse(text, std::path::Path::new("observer.toml")).unwrap()
+    glint_scene::toml_scene::parse(text, std::path::Path::new("observer.toml")).unwrap()
 }
 
 fn ray(kind: u32, parent: u32, depth: u32, origin: DVec3, dir: DVec3) -> ProbeRay {

@@ -7,7 +7,7 @@
 //! Why: a software rasteriser runs a SIMD group's lanes through the BVH each on its own
 //! path, loading every node and primitive once per lane. The lanes of a tile's
 //! SIMD group instead walk one short list together, so each primitive is loaded
-//! once for all of them (shaders/lib/eye_tiles.wgsl), and the walk stops when
+//! once for all of them (shaders/fast/eye_tiles.wgsl), and the walk stops when
 //! every ray has hit something nearer than the next primitive can be.
 //!
 //! A primitive is listed in every tile with a pixel centre in its projection's
@@ -17,8 +17,7 @@
 //! order of it.
 
 use glam::Vec3;
-
-use crate::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
+use glint_encoding::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
 
 /// The most entries the lists may hold per tile on average: beyond that a
 /// tile's list costs its rays more than the BVH walk (gears at 512×512, the

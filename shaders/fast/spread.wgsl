@@ -1,5 +1,12 @@
 // The order in which a dispatch's workgroups cover a band, and a workgroup's
-// invocations its pixels.
+// invocations its pixels, spread for lavapipe's threads and SIMD groups
+// (docs/decisions/031-spread-order.md, 041-simd-group-on-a-2x2-block.md): the
+// function of lib/band_order.wgsl.
+
+// Where in the band invocation `lid` of workgroup `wid` traces, in invocations.
+fn band_place(wid: vec3<u32>, lid: vec3<u32>, groups: vec3<u32>, size: vec2<u32>) -> vec2<u32> {
+    return spread_workgroup(wid, groups) * size + spread_invocation(lid, size);
+}
 
 // Where in the band workgroup `wid` of a dispatch of `groups` traces, in
 // workgroups. lavapipe hands each of its threads one run of consecutive

@@ -22,10 +22,17 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use glint_scene::bvh::{Bvh, Node};
+use glint_scene::validate::Invalid;
 
-use crate::bvh::{Bvh, Node};
-use crate::gpu_types::{LEAF, RIGHT_LEAF};
-use crate::validate::Invalid;
+/// In a reference to a BVH record: a leaf. In `GpuNode::children`: the first
+/// child is a leaf. The kernels get it and its siblings through the prelude
+/// (gpu_types.rs).
+pub const LEAF: u32 = 1 << 31;
+/// In `GpuNode::children`: the second child is a leaf.
+pub const RIGHT_LEAF: u32 = 1 << 30;
+/// The end of a traversal.
+pub const NO_NODE: u32 = u32::MAX;
 
 /// The bits of a child reference that index a record. [`LEAF`] marks a
 /// reference to a leaf (on the kernel's stack and in [`GpuBvh::root`]); in an
@@ -121,17 +128,20 @@ fn cell_exponent(extent: f32) -> u32 {
     e.clamp(MIN_EXPONENT + 7, 254 + 7) - 7
 }
 
-impl Bvh {
-    /// The tree in the kernel's layout (see the module documentation), once it
+impl GpuBvh {
+    /// `bvh` in the kernel's layout (see the module documentation), once it
     /// is known to fit it.
-    pub fn gpu(&self) -> Result<GpuBvh, Invalid> {
-        self.validate()?;
+    pub fn encode(bvh: &Bvh) -> Result<GpuBvh, Invalid> {
+        bvh.validate()?;
+        if bvh.nodes.len() > MAX_NODES {
+            return Err(Invalid::TooMany { what: "BVH nodes", count: bvh.nodes.len(), max: MAX_NODES });
+        }
         let mut out = GpuBvh {
-            nodes: vec![GpuNode::zeroed(); self.nodes.len()],
-            grids: vec![GpuGrid::zeroed(); self.nodes.len()],
+            nodes: vec![GpuNode::zeroed(); bvh.nodes.len()],
+            grids: vec![GpuGrid::zeroed(); bvh.nodes.len()],
             root: 0,
         };
-        let root = &self.nodes[0];
+        let root = &bvh.nodes[0];
         if root.is_leaf() {
             // An inverted box (the empty scene's) holds nothing: count 0 never
             // reads the padding primitive.
@@ -139,33 +149,33 @@ impl Bvh {
             out.nodes[0] = leaf(root.left_or_first, if empty { 0 } else { root.count });
             out.root = LEAF;
         } else {
-            self.place(0, GpuGrid::over(root.min.into(), root.max.into()), &mut out);
+            place(bvh, 0, GpuGrid::over(root.min.into(), root.max.into()), &mut out);
         }
         Ok(out)
     }
+}
 
-    /// Writes interior node `i` over `grid` and, depth first, its subtree.
-    fn place(&self, i: usize, grid: GpuGrid, out: &mut GpuBvh) {
-        out.grids[i] = grid;
-        let first = self.nodes[i].left_or_first;
-        let mut record = GpuNode { quantized: [0; 3], children: first };
-        for (c, flag) in [LEAF, RIGHT_LEAF].into_iter().enumerate() {
-            let index = first as usize + c;
-            let child: &Node = &self.nodes[index];
-            for a in 0..3 {
-                let (q_lo, q_hi) = grid.quantize(a, child.min[a], child.max[a]);
-                record.quantized[a] |= (q_lo | q_hi << 8) << (16 * c);
-            }
-            if child.is_leaf() {
-                record.children |= flag;
-                out.nodes[index] = leaf(child.left_or_first, child.count);
-            } else {
-                let (lo, hi) = grid.decode_box(record.quantized, 2 * c as u32);
-                self.place(index, GpuGrid::over(lo, hi), out);
-            }
+/// Writes `bvh`'s interior node `i` over `grid` and, depth first, its subtree.
+fn place(bvh: &Bvh, i: usize, grid: GpuGrid, out: &mut GpuBvh) {
+    out.grids[i] = grid;
+    let first = bvh.nodes[i].left_or_first;
+    let mut record = GpuNode { quantized: [0; 3], children: first };
+    for (c, flag) in [LEAF, RIGHT_LEAF].into_iter().enumerate() {
+        let index = first as usize + c;
+        let child: &Node = &bvh.nodes[index];
+        for a in 0..3 {
+            let (q_lo, q_hi) = grid.quantize(a, child.min[a], child.max[a]);
+            record.quantized[a] |= (q_lo | q_hi << 8) << (16 * c);
         }
-        out.nodes[i] = record;
+        if child.is_leaf() {
+            record.children |= flag;
+            out.nodes[index] = leaf(child.left_or_first, child.count);
+        } else {
+            let (lo, hi) = grid.decode_box(record.quantized, 2 * c as u32);
+            place(bvh, index, GpuGrid::over(lo, hi), out);
+        }
     }
+    out.nodes[i] = record;
 }
 
 fn leaf(first: u32, count: u32) -> GpuNode {
@@ -175,10 +185,9 @@ fn leaf(first: u32, count: u32) -> GpuNode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bvh::MAX_DEPTH;
-    use crate::test_rng::Rng;
+    use glint_scene::bvh::MAX_DEPTH;
+    use glint_scene::test_rng::Rng;
 
-    use crate::gpu_types::NO_NODE;
     /// A ray that missed both children, as NEEDS_POP in the kernel.
     const NEEDS_POP: u32 = u32::MAX - 1;
 
@@ -217,7 +226,7 @@ mod tests {
     /// decoded box: that grid is the one stored for it, every primitive is in
     /// exactly one leaf, and every decoded box contains its primitives.
     fn check(bvh: &Bvh, bounds: &[(Vec3, Vec3)]) {
-        let gpu = bvh.gpu().unwrap();
+        let gpu = GpuBvh::encode(&bvh).unwrap();
         let mut seen = vec![0u32; bounds.len()];
         let mut stack = vec![(gpu.root, gpu.grids[0], None)];
         while let Some((reference, grid, decoded)) = stack.pop() {
@@ -271,7 +280,7 @@ mod tests {
         let mut rng = Rng(2);
         let bounds = sphere_bounds(&random_spheres(&mut rng, 1000, 10.0));
         let bvh = Bvh::build(&bounds);
-        let gpu = bvh.gpu().unwrap();
+        let gpu = GpuBvh::encode(&bvh).unwrap();
         let mut stack = vec![(0u32, gpu.grids[0])];
         while let Some((i, grid)) = stack.pop() {
             let first = bvh.nodes[i as usize].left_or_first as usize;
@@ -304,18 +313,18 @@ mod tests {
     #[test]
     fn a_lone_leaf_is_the_root() {
         let bounds = vec![(Vec3::ZERO, Vec3::ONE); 3];
-        let gpu = Bvh::build(&bounds).gpu().unwrap();
+        let gpu = GpuBvh::encode(&Bvh::build(&bounds)).unwrap();
         assert_eq!(gpu.root, LEAF);
         assert_eq!(leaf_range(&gpu, gpu.root), 0..3);
         // The brute-force tree: one leaf however many primitives.
         let many = vec![(Vec3::ZERO, Vec3::ONE); 1000];
-        let gpu = Bvh::single_leaf(&many).gpu().unwrap();
+        let gpu = GpuBvh::encode(&Bvh::single_leaf(&many)).unwrap();
         assert_eq!(leaf_range(&gpu, gpu.root), 0..1000);
     }
 
     #[test]
     fn an_empty_scene_has_an_empty_leaf() {
-        let gpu = Bvh::build(&[]).gpu().unwrap();
+        let gpu = GpuBvh::encode(&Bvh::build(&[])).unwrap();
         assert_eq!(gpu.root, LEAF);
         assert_eq!(leaf_range(&gpu, gpu.root), 0..0);
     }
@@ -329,7 +338,7 @@ mod tests {
             (Vec3::ZERO, Vec3::ONE),
             (Vec3::ZERO, Vec3::ONE),
         ];
-        Bvh::build(&bounds).gpu().unwrap();
+        GpuBvh::encode(&Bvh::build(&bounds)).unwrap();
     }
 
     /// Nearest positive root of |o + t·d − c|² = r² for unit `d`.
@@ -361,7 +370,7 @@ mod tests {
     /// node it returns to; equal distances go to the lower primitive. Returns
     /// (t, input primitive index) and the most stack entries used.
     fn closest_hit(bvh: &Bvh, spheres: &[(Vec3, f32)], origin: Vec3, dir: Vec3) -> (Option<(f32, u32)>, usize) {
-        let gpu = bvh.gpu().unwrap();
+        let gpu = GpuBvh::encode(&bvh).unwrap();
         let inv_dir = dir.recip();
         let mut best: Option<(f32, u32)> = None;
         let t_max = |best: &Option<(f32, u32)>| best.map_or(f32::INFINITY, |b| b.0);

@@ -1,12 +1,12 @@
 // The eye rays of a 2×2 block of pixels through its tile's list
-// (crates/glint-scene/src/eye_tiles.rs): what the primary kernel's import
-// `eye_block` is for a scene with eye tiles. A SIMD group's lanes trace blocks
+// (crates/glint-gpu/src/eye_tiles/binning.rs; docs/decisions/046-eye-tiles.md): the
+// function of lib/eye_block.wgsl for a scene with eye tiles. A SIMD group's lanes trace blocks
 // of one tile (the host dispatches so), and walk its list together, nearest
 // first: each entry's primitive is loaded by four lanes, a word each, and
 // broadcast to all, where lavapipe would load it once per lane, word by word.
 // Each ray gets the hit the BVH walk gives it: the same tests (packet_test),
 // of every primitive its ray can reach.
-// import: bindings camera packet types
+// import: bindings dispatch eye_rays fast/camera4 fast/packet types
 
 // Per tile, the index of its first entry and their number; then each tile's
 // entries, primitive indices followed by their distances (f32 bits).
@@ -22,7 +22,11 @@ const EYE_TILE = vec2<u32>(EYE_TILE_WIDTH, EYE_TILE_HEIGHT);
 // lanes share one tile, so one `count`; no compiler can see that, and WebGPU's
 // (Tint) rejects the kernel unless told.
 @diagnostic(off, subgroup_uniformity)
-fn trace_eye_block(corner: vec2<u32>, live: bool) -> PacketHit {
+fn trace_eye_block(corner: vec2<u32>, live: bool) -> EyeHits {
+    // The heat map counts each ray's own visits.
+    if dispatch_view() == VIEW_HEATMAP {
+        return trace_eye_rays(corner, 0xfu);
+    }
     let p = packet(camera_rays4(corner));
     var hit = packet_planes(p);
     // Every lane is active here: the SIMD group's size, and this lane's place in it.
@@ -44,7 +48,7 @@ fn trace_eye_block(corner: vec2<u32>, live: bool) -> PacketHit {
             // Nearest first: once every ray has a hit nearer than this entry
             // can be, so has it than every entry after it.
             if subgroupAll(!live || max4(hit.t) < subgroupShuffle(listed_near, j)) {
-                return hit;
+                return EyeHits(hit.t, hit.prim, vec4<u32>(0u));
             }
             let i = subgroupShuffle(listed, j);
             let word = prim_words[4u * i + (lane & 3u)];
@@ -56,5 +60,5 @@ fn trace_eye_block(corner: vec2<u32>, live: bool) -> PacketHit {
             hit = packet_test(i, prim, p, hit);
         }
     }
-    return hit;
+    return EyeHits(hit.t, hit.prim, vec4<u32>(0u));
 }

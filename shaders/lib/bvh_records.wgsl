@@ -1,0 +1,15 @@
+// The BVH's records and their grids, in storage buffers. A tuning may put
+// fast/bvh_textures.wgsl or fast/uniform_tree.wgsl in this file's place.
+// import: types
+
+@group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;
+// The grids of the BVH's interior records, for the nodes traversal returns to.
+@group(0) @binding(8) var<storage, read> grids: array<GpuGrid>;
+
+fn node_at(i: u32) -> GpuNode {
+    return nodes[i];
+}
+
+fn grid_at(i: u32) -> GpuGrid {
+    return grids[i];
+}
