@@ -336,23 +336,30 @@ impl ViewerApp {
 
     fn files_section(&mut self, ui: &mut Ui) {
         CollapsingHeader::new("Save").default_open(true).show(ui, |ui| {
-            ui.horizontal(|ui| {
-                let label = ui.label("image");
-                ui.text_edit_singleline(&mut self.document.screenshot_path).labelled_by(label.id);
-                if ui.button("Save image").on_hover_text("PNG at the render resolution").clicked() {
-                    self.save_screenshot();
-                }
-            });
-            ui.horizontal(|ui| {
-                let label = ui.label("scene");
-                ui.text_edit_singleline(&mut self.document.save_path).labelled_by(label.id);
-                if ui.button("Save scene as").on_hover_text("TOML with the current camera, lights and materials").clicked() {
-                    self.save_scene();
-                }
-            });
+            // A page cannot write to a path: it saves by download from its bar.
+            if cfg!(not(target_arch = "wasm32")) {
+                self.save_rows(ui);
+            }
             if let Some((text, is_error)) = &self.notice {
                 let color = if *is_error { ui.visuals().warn_fg_color } else { ui.visuals().text_color() };
                 ui.colored_label(color, text);
+            }
+        });
+    }
+
+    fn save_rows(&mut self, ui: &mut Ui) {
+        ui.horizontal(|ui| {
+            let label = ui.label("image");
+            ui.text_edit_singleline(&mut self.document.screenshot_path).labelled_by(label.id);
+            if ui.button("Save image").on_hover_text("PNG at the render resolution").clicked() {
+                self.save_screenshot();
+            }
+        });
+        ui.horizontal(|ui| {
+            let label = ui.label("scene");
+            ui.text_edit_singleline(&mut self.document.save_path).labelled_by(label.id);
+            if ui.button("Save scene as").on_hover_text("TOML with the current camera, lights and materials").clicked() {
+                self.save_scene();
             }
         });
     }
