@@ -7,7 +7,7 @@ mod support;
 use glam::Vec3;
 use glint_encoding::gpu_types::View;
 use glint_gpu::{Acceleration, RenderOptions};
-use glint_scene::{Attenuation, LightKind, Projection, Scene, Shape};
+use glint_scene::{Attenuation, LightKind, Projection, Scene};
 use support::{parse, render};
 
 #[test]
@@ -36,15 +36,7 @@ fn scaled(scene: &Scene, s: f32) -> Scene {
         }
     }
     for shape in out.objects.iter_mut().flat_map(|o| o.shapes.iter_mut()) {
-        match shape {
-            Shape::Sphere { center, radius } => (*center, *radius) = (*center * s, *radius * s),
-            Shape::Triangle { vertices, .. } => vertices.iter_mut().for_each(|v| *v *= s),
-            Shape::Polygon { vertices } => vertices.iter_mut().for_each(|v| *v *= s),
-            Shape::Cone { base, base_radius, apex, apex_radius } => {
-                (*base, *apex, *base_radius, *apex_radius) = (*base * s, *apex * s, *base_radius * s, *apex_radius * s)
-            }
-            Shape::Plane { point, .. } => *point *= s,
-        }
+        *shape = shape.scaled(s);
     }
     for checker in out.materials.iter_mut().filter_map(|m| m.checker.as_mut()) {
         checker.size *= s;

@@ -54,21 +54,14 @@ pub enum Shape {
 impl Shape {
     /// A sphere; `radius` must not be negative.
     pub fn sphere(center: Vec3, radius: f32) -> Result<Shape, ShapeProblem> {
-        if radius == 0.0 {
-            return Err(ShapeProblem::Degenerate("sphere of radius 0 skipped".into()));
-        }
-        finite(Shape::Sphere { center, radius })
+        checked(Shape::Sphere { center, radius })
     }
 
     /// An open cone or cylinder; the radii must not be negative. A cone whose
     /// base radius is 0 is stored with its ends swapped (the same surface), so
     /// the base is always the wide end.
     pub fn cone(base: Vec3, base_radius: f32, apex: Vec3, apex_radius: f32) -> Result<Shape, ShapeProblem> {
-        // Ends closer than f32 can measure leave the axis without a direction.
-        if (apex - base).length() == 0.0 || (base_radius == 0.0 && apex_radius == 0.0) {
-            return Err(ShapeProblem::Degenerate("degenerate cone (base equals apex, or both radii 0) skipped".into()));
-        }
-        finite(if base_radius == 0.0 {
+        checked(if base_radius == 0.0 {
             Shape::Cone { base: apex, base_radius: apex_radius, apex: base, apex_radius: base_radius }
         } else {
             Shape::Cone { base, base_radius, apex, apex_radius }
@@ -77,10 +70,7 @@ impl Shape {
 
     /// A triangle, smooth-shaded when it has (unit) vertex normals.
     pub fn triangle(vertices: [Vec3; 3], normals: Option<[Vec3; 3]>) -> Result<Shape, ShapeProblem> {
-        if polygon_normal(&vertices).is_none() {
-            return Err(ShapeProblem::Degenerate("degenerate triangle (no area) skipped".into()));
-        }
-        finite(Shape::Triangle { vertices, normals })
+        checked(Shape::Triangle { vertices, normals })
     }
 
     /// A polygon of at least 3 vertices, with a warning when it is not planar.
@@ -88,22 +78,21 @@ impl Shape {
     /// kernels test without the polygon's vertex loop (NFF writes every
     /// triangle of a mesh as `p 3`).
     pub fn polygon(vertices: Vec<Vec3>) -> Result<(Shape, Option<String>), ShapeProblem> {
-        let Some(normal) = polygon_normal(&vertices) else {
-            let n = vertices.len();
-            return Err(ShapeProblem::Degenerate(format!("degenerate polygon ({n} vertices, no area) skipped")));
-        };
+        let polygon = checked(Shape::Polygon { vertices })?;
+        let Shape::Polygon { vertices } = &polygon else { unreachable!("checked keeps the shape") };
         if let [a, b, c] = vertices[..] {
-            return Ok((finite(Shape::Triangle { vertices: [a, b, c], normals: None })?, None));
+            return Ok((Shape::Triangle { vertices: [a, b, c], normals: None }, None));
         }
-        let deviation = polygon_non_planarity(&vertices, normal);
+        let normal = polygon_normal(vertices).expect("checked: it has area");
+        let deviation = polygon_non_planarity(vertices, normal);
         let warning = (deviation > NON_PLANAR_TOLERANCE)
             .then(|| format!("polygon is not planar (its vertices leave the plane by {deviation:.2e} of its size); kept"));
-        Ok((finite(Shape::Polygon { vertices })?, warning))
+        Ok((polygon, warning))
     }
 
     /// An infinite plane through `point`; `normal` must be a unit vector.
     pub fn plane(point: Vec3, normal: Vec3) -> Result<Shape, ShapeProblem> {
-        finite(Shape::Plane { point, normal })
+        checked(Shape::Plane { point, normal })
     }
 
     /// A rectangle centred on `center` in the plane of the unit `normal`, with
@@ -120,10 +109,13 @@ impl Shape {
         let c = center.as_dvec3();
         let vertices: Vec<Vec3> = [c - a - b, c + a - b, c + a + b, c - a + b].iter().map(|p| p.as_vec3()).collect();
         // Corners beyond f32 are an overflow, not a lack of area.
-        if vertices.iter().all(|p| p.is_finite()) && polygon_normal(&vertices).is_none() {
+        if !vertices.iter().all(|p| p.is_finite()) {
+            return Err(ShapeProblem::Overflows);
+        }
+        if polygon_normal(&vertices).is_none() {
             return Err(ShapeProblem::Degenerate("degenerate rectangle (no area) skipped".into()));
         }
-        finite(Shape::Polygon { vertices })
+        checked(Shape::Polygon { vertices })
     }
 
     /// What every tool calls the shape: a cone of equal radii is a cylinder.
@@ -161,6 +153,41 @@ impl Shape {
         })
     }
 
+    /// The same shape with every length and position multiplied by `s`: what a
+    /// test of scale invariance needs of each kind.
+    pub fn scaled(&self, s: f32) -> Shape {
+        match self {
+            Shape::Sphere { center, radius } => Shape::Sphere { center: center * s, radius: radius * s },
+            Shape::Triangle { vertices, normals } => Shape::Triangle { vertices: vertices.map(|v| v * s), normals: *normals },
+            Shape::Polygon { vertices } => Shape::Polygon { vertices: vertices.iter().map(|v| v * s).collect() },
+            Shape::Cone { base, base_radius, apex, apex_radius } => {
+                Shape::Cone { base: base * s, base_radius: base_radius * s, apex: apex * s, apex_radius: apex_radius * s }
+            }
+            Shape::Plane { point, normal } => Shape::Plane { point: point * s, normal: *normal },
+        }
+    }
+
+    /// Why the policy (above) keeps the shape out of a scene, if it does: what
+    /// each constructor checks, and what no loaded shape has.
+    pub fn problem(&self) -> Option<ShapeProblem> {
+        let degenerate = match self {
+            Shape::Sphere { radius, .. } => (*radius == 0.0).then(|| "sphere of radius 0 skipped".to_string()),
+            Shape::Triangle { vertices, .. } => polygon_normal(vertices).is_none().then(|| "degenerate triangle (no area) skipped".to_string()),
+            Shape::Polygon { vertices } => {
+                let n = vertices.len();
+                polygon_normal(vertices).is_none().then(|| format!("degenerate polygon ({n} vertices, no area) skipped"))
+            }
+            // Ends closer than f32 can measure leave the axis without a direction.
+            Shape::Cone { base, base_radius, apex, apex_radius } => ((*apex - *base).length() == 0.0 || (*base_radius == 0.0 && *apex_radius == 0.0))
+                .then(|| "degenerate cone (base equals apex, or both radii 0) skipped".to_string()),
+            Shape::Plane { .. } => None,
+        };
+        match degenerate {
+            Some(warning) => Some(ShapeProblem::Degenerate(warning)),
+            None => (!self.is_finite()).then_some(ShapeProblem::Overflows),
+        }
+    }
+
     /// Whether 32-bit floats hold the shape: its bounds, or for a plane its
     /// offset n·p, which the kernels intersect with.
     pub fn is_finite(&self) -> bool {
@@ -171,12 +198,11 @@ impl Shape {
     }
 }
 
-/// `shape` if 32-bit floats hold it.
-fn finite(shape: Shape) -> Result<Shape, ShapeProblem> {
-    if shape.is_finite() {
-        Ok(shape)
-    } else {
-        Err(ShapeProblem::Overflows)
+/// `shape` if the policy keeps it: what every constructor ends with.
+fn checked(shape: Shape) -> Result<Shape, ShapeProblem> {
+    match shape.problem() {
+        None => Ok(shape),
+        Some(problem) => Err(problem),
     }
 }
 
@@ -237,6 +263,22 @@ mod tests {
         let (lo, hi) = s.bounds().unwrap();
         assert!((lo - Vec3::new(-1.0, 0.0, -1.0)).length() < 1e-6);
         assert!((hi - Vec3::new(1.0, 2.0, 1.0)).length() < 1e-6);
+    }
+
+    #[test]
+    fn a_scaled_shape_has_scaled_bounds() {
+        let shapes = [
+            Shape::sphere(Vec3::new(1.0, 2.0, 3.0), 0.5),
+            Shape::triangle([Vec3::ZERO, Vec3::X, Vec3::Y], Some([Vec3::Z; 3])),
+            Shape::polygon(vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y]).map(|(shape, _)| shape),
+            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 0.5),
+        ];
+        for shape in shapes.map(Result::unwrap) {
+            let ((lo, hi), (scaled_lo, scaled_hi)) = (shape.bounds().unwrap(), shape.scaled(4.0).bounds().unwrap());
+            assert!((scaled_lo - lo * 4.0).length() < 1e-5 && (scaled_hi - hi * 4.0).length() < 1e-5, "{shape:?}");
+        }
+        let plane = Shape::Plane { point: Vec3::Y, normal: Vec3::Y };
+        assert_eq!(plane.scaled(4.0), Shape::Plane { point: Vec3::Y * 4.0, normal: Vec3::Y });
     }
 
     #[test]

@@ -37,13 +37,14 @@ use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use glint_scene::LoadError;
+use glam::Vec3;
+use glint_scene::{LoadError, Shape};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
 
 use generate::{both_modes, Generator, mtl_text, nff_text, obj_text, toml_text, Mode};
 use mutate::{mutated, Index, Mutation};
-use oracle::{check_error, check_outcome, write_case, CaseFile};
+use oracle::{check_error, check_outcome, check_scene, write_case, CaseFile};
 
 // ---------------------------------------------------------------------------
 // Running a target
@@ -247,6 +248,22 @@ fn the_oracle_rejects_what_it_should() {
         LoadError::new(&file.path, at(1, None), ""),
     ] {
         assert!(check_error(&bad, &[&file]).is_err(), "{bad}");
+    }
+}
+
+/// The oracle refuses what the shape policy keeps out of a scene, by the
+/// shape's own check, and bounds turned inside out.
+#[test]
+fn the_oracle_rejects_shapes_no_loader_keeps() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_case(dir.path(), "s.toml", b"[image]\nwidth = 8\nheight = 8\n[camera]\neye = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 40\n[[object]]\ntype = \"sphere\"\ncenter = [0, 0, -5]\nradius = 1\n");
+    let scene = glint_scene::load(&file.path).unwrap();
+    assert!(check_scene(&scene).is_ok());
+    let point_cone = Shape::Cone { base: Vec3::ONE, base_radius: 1.0, apex: Vec3::ONE, apex_radius: 0.5 };
+    for shape in [point_cone, Shape::Sphere { center: Vec3::ZERO, radius: -1.0 }] {
+        let mut bad = scene.clone();
+        bad.objects[0].shapes = vec![shape.clone()];
+        assert!(check_scene(&bad).is_err(), "{shape:?}");
     }
 }
 
