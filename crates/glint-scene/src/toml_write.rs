@@ -16,6 +16,7 @@ use std::fmt::Write;
 use glam::Vec3;
 
 use crate::animation::{CameraTrack, Interpolation};
+use crate::toml_scene::{written_object, Written};
 use crate::{Animation, Attenuation, Camera, LightKind, Material, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
 /// A value that the TOML format cannot hold.
@@ -241,34 +242,13 @@ impl Writer {
     }
 
     fn shape(&mut self, shape: &Shape, what: &str) -> Result<(), WriteError> {
-        match shape {
-            Shape::Sphere { center, radius } => {
-                self.line("type = \"sphere\"");
-                self.vec("center", *center, what)?;
-                self.num("radius", *radius, what)?;
-            }
-            Shape::Triangle { vertices, normals } => {
-                self.line("type = \"triangle\"");
-                self.line(format!("vertices = {}", vectors(vertices, what)?));
-                if let Some(n) = normals {
-                    self.line(format!("normals = {}", vectors(n, what)?));
-                }
-            }
-            Shape::Polygon { vertices } => {
-                self.line("type = \"polygon\"");
-                self.line(format!("vertices = {}", vectors(vertices, what)?));
-            }
-            Shape::Cone { base, base_radius, apex, apex_radius } => {
-                self.line("type = \"cone\"");
-                self.vec("base", *base, what)?;
-                self.num("base_radius", *base_radius, what)?;
-                self.vec("apex", *apex, what)?;
-                self.num("apex_radius", *apex_radius, what)?;
-            }
-            Shape::Plane { point, normal } => {
-                self.line("type = \"plane\"");
-                self.vec("point", *point, what)?;
-                self.vec("normal", *normal, what)?;
+        let (kind, values) = written_object(shape);
+        self.line(format!("type = \"{kind}\""));
+        for (key, value) in values {
+            match value {
+                Written::Number(v) => self.num(key, v, what)?,
+                Written::Point(v) => self.vec(key, v, what)?,
+                Written::Points(vs) => self.line(format!("{key} = {}", vectors(vs, what)?)),
             }
         }
         Ok(())

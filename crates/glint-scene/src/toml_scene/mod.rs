@@ -38,6 +38,7 @@ mod tests;
 mod values;
 
 pub use notes::material_notes;
+pub(crate) use object::{written_object, Written};
 
 use std::cell::RefCell;
 use std::path::Path;

@@ -1,6 +1,6 @@
-//! The object types of a TOML scene and the keys each takes, and building one
-//! `[[object]]`: checking its keys, then making its shape (or, for an
-//! icosphere, its triangles).
+//! The object types of a TOML scene and the keys each takes, both ways:
+//! building one `[[object]]` (checking its keys, then making its shape or, for
+//! an icosphere, its triangles), and the keys a shape is written back with.
 
 use std::collections::BTreeMap;
 
@@ -31,6 +31,31 @@ const OBJECT_TYPES: [(&str, &[&str]); 8] = [
 /// The keys an object of type `kind` takes besides `type` and `material`.
 pub(super) fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
     OBJECT_TYPES.iter().find(|(name, _)| *name == kind).map(|(_, keys)| *keys)
+}
+
+/// A value of an object's key, as `toml_write` writes it.
+pub(crate) enum Written<'a> {
+    Number(f32),
+    Point(Vec3),
+    Points(&'a [Vec3]),
+}
+
+/// The object type a shape is written as, and the values of its keys, named
+/// from `OBJECT_TYPES` in their order (a key with no value is left out).
+pub(crate) fn written_object(shape: &Shape) -> (&'static str, Vec<(&'static str, Written<'_>)>) {
+    use Written::{Number, Point, Points};
+    let (kind, values) = match shape {
+        Shape::Sphere { center, radius } => ("sphere", vec![Some(Point(*center)), Some(Number(*radius))]),
+        Shape::Triangle { vertices, normals } => ("triangle", vec![Some(Points(vertices)), normals.as_ref().map(|n| Points(n))]),
+        Shape::Polygon { vertices } => ("polygon", vec![Some(Points(vertices))]),
+        Shape::Cone { base, base_radius, apex, apex_radius } => {
+            ("cone", vec![Some(Point(*base)), Some(Number(*base_radius)), Some(Point(*apex)), Some(Number(*apex_radius))])
+        }
+        // A plane with a `size` is stored, and so written, as its polygon.
+        Shape::Plane { point, normal } => ("plane", vec![Some(Point(*point)), Some(Point(*normal))]),
+    };
+    let keys = object_keys(kind).expect("shapes are written as object types");
+    (kind, keys.iter().zip(values).filter_map(|(key, value)| Some((*key, value?))).collect())
 }
 
 impl Builder<'_> {
