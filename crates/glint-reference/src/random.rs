@@ -397,3 +397,83 @@ fn light(rng: &mut Rng, count: usize) -> Light {
     };
     Light { kind: LightKind::Point { position: towards * d }, color, intensity, attenuation, enabled: true }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use glam::DVec3;
+    use glint_scene::SHAPE_NAMES;
+
+    use super::*;
+
+    #[test]
+    fn random_scenes_are_deterministic_varied_and_separated() {
+        let mut names: BTreeMap<&str, usize> = BTreeMap::new();
+        let mut features = [0usize; 8];
+        for seed in 0..40 {
+            let s = random_scene(seed);
+            assert_eq!(s, random_scene(seed));
+            assert_ne!(s, random_scene(seed + 1000));
+            assert!(s.camera.basis().is_some());
+            assert!((1..=16).contains(&s.render.max_depth));
+            let lit = s.lights.iter().filter(|l| l.enabled).count();
+            assert!((1..=3).contains(&lit));
+            // Object 0 is the floor; every other object sits in a ball of its own.
+            let balls: Vec<(DVec3, f64)> = s.objects[1..]
+                .iter()
+                .map(|o| {
+                    let (lo, hi) = o.shapes.iter().filter_map(Shape::bounds).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), (l, h)| (a.min(l), b.max(h)));
+                    assert!(lo.y > FLOOR_Y + 0.25, "seed {seed}: object reaches down to {}", lo.y);
+                    let c = ((lo + hi) / 2.0).as_dvec3();
+                    let r = o.shapes.iter().flat_map(shape_points).map(|p| (p - c).length()).fold(0.0, f64::max);
+                    (c, r)
+                })
+                .collect();
+            for (a, (ca, ra)) in balls.iter().enumerate() {
+                assert!(*ra <= f64::from(OBJECT_RADIUS) * 1.5);
+                for (cb, rb) in &balls[a + 1..] {
+                    assert!((*ca - *cb).length() - ra - rb > 0.1, "seed {seed}: objects too close");
+                }
+            }
+            for shape in s.objects.iter().flat_map(|o| &o.shapes) {
+                *names.entry(shape.name()).or_default() += 1;
+                features[0] += usize::from(matches!(shape, Shape::Triangle { normals: Some(_), .. }));
+            }
+            features[1] += usize::from(s.depth_cue.is_some());
+            features[2] += usize::from(s.render.shadow_mode == ShadowMode::Tinted);
+            features[3] += usize::from(s.materials.iter().any(|m| m.is_transmissive()));
+            features[4] += usize::from(s.materials.iter().any(|m| m.reflect.max_element() > 0.0));
+            features[5] += usize::from(matches!(s.camera.projection, Projection::Orthographic { .. }));
+            features[6] += usize::from(s.materials[0].checker.is_some());
+            features[7] += usize::from(s.materials[1..].iter().any(|m| m.checker.is_some()));
+        }
+        // Every kind, by each name it has (a cone, a cylinder), so that
+        // tests/differential.rs traces it on the GPU and the CPU.
+        assert!(SHAPE_NAMES.iter().all(|name| names.get(name).is_some_and(|&n| n >= 10)), "{names:?}");
+        assert!(features.iter().all(|&f| f >= 3), "{features:?}");
+    }
+
+    /// Points that bound a shape (vertices, sphere extremes, cone rims: the
+    /// bounds' corners are too loose).
+    fn shape_points(s: &Shape) -> Vec<DVec3> {
+        match s {
+            Shape::Sphere { center, radius } => {
+                [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z].map(|d| center.as_dvec3() + d * f64::from(*radius)).to_vec()
+            }
+            Shape::Triangle { vertices, .. } => vertices.iter().map(|v| v.as_dvec3()).collect(),
+            Shape::Polygon { vertices } => vertices.iter().map(|v| v.as_dvec3()).collect(),
+            Shape::Cone { base, base_radius, apex, apex_radius } => {
+                let (e1, e2) = frame((*apex - *base).normalize());
+                (0..64)
+                    .flat_map(|k| {
+                        let a = k as f32 * TAU / 64.0;
+                        let dir = a.cos() * e1 + a.sin() * e2;
+                        [*base + dir * *base_radius, *apex + dir * *apex_radius].map(Vec3::as_dvec3)
+                    })
+                    .collect()
+            }
+            Shape::Plane { .. } => unreachable!("only the floor is a plane"),
+        }
+    }
+}

@@ -289,7 +289,7 @@ fn generate(shapes: &[Shape]) -> String {
                 writeln!(out, "pp 3").unwrap();
                 (0..3).try_for_each(|i| writeln!(out, "{} {}", v3(vertices[i]), v3(normals[i])))
             }
-            Shape::Plane { .. } => unreachable!("NFF has no planes"),
+            other => unreachable!("NFF has no {}", other.name()),
         }
         .unwrap();
     }
@@ -359,7 +359,7 @@ fn counts(s: &Scene) -> Counts {
             Shape::Cone { .. } => c.cones += 1,
             Shape::Polygon { .. } => c.polygons += 1,
             Shape::Triangle { .. } => c.triangles += 1,
-            Shape::Plane { .. } => unreachable!("NFF has no planes"),
+            other => unreachable!("NFF has no {}", other.name()),
         }
     }
     c
