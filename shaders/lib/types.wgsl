@@ -1,6 +1,6 @@
 // Structs shared by the kernels. Each one the host uploads (Gpu…, the
 // uniforms, the dispatch) has a Rust twin of the same name in
-// crates/glint-encoding/src/gpu_types.rs (or gpu_bvh.rs for the BVH); a naga test checks
+// crates/glint-encoding/src/gpu_types.rs (gpu_bvh.rs for the BVH, primitive_kinds.rs for GpuPrim); a naga test checks
 // that sizes and member offsets agree. Rays are the kernels' own. The constants they use (PRIM_, VIEW_,
 // FLAG_, MISS, LEAF …) come from the generated prelude (gpu_types::wgsl_prelude).
 

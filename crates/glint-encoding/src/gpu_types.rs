@@ -1,14 +1,14 @@
 //! The plain arrays the WGSL kernels read. Every struct here has a twin of the
 //! same name in shaders/types.wgsl; a naga test checks sizes and offsets agree.
+//! A primitive's record, `GpuPrim`, is its kind's: it lives in primitive_kinds.rs.
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use glint_scene::bvh::MAX_DEPTH as BVH_MAX_DEPTH;
-use glint_scene::{plane_axes, polygon_normal};
 use glint_scene::{Attenuation, LightKind, Projection, Scene, ShadowMode, Shape, SpecularModel};
 
 use crate::gpu_bvh::{self, GpuBvh, GpuGrid, GpuNode};
-pub use crate::primitive_kinds::{PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
+pub use crate::primitive_kinds::{GpuPrim, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE, PRIM_TRIANGLE};
 
 /// Declares the numbers the host and the kernels share. Each becomes a Rust
 /// constant here and a WGSL `const` in the prelude that every kernel is
@@ -332,37 +332,6 @@ pub struct GpuMaterial {
     pub _pad2: u32,
 }
 
-/// One primitive, 64 bytes; what `a`, `b`, `c` hold depends on the kind:
-/// sphere a = (centre, radius); triangle a, b, c = vertices, `first` = index of
-/// its three vertex normals when `count` = 3; polygon a = (unit normal, n·v0),
-/// b and c = the plane's axes u and v (`plane_axes`, for the checker),
-/// vertices[first .. first + count]; cone a = (base, base radius), b = (apex,
-/// apex radius); infinite plane a = (unit normal, n·p), b and c = u and v.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct GpuPrim {
-    pub a: [f32; 4],
-    pub b: [f32; 4],
-    pub c: [f32; 4],
-    /// kind in the low 8 bits, material index above.
-    pub kind_material: u32,
-    pub object: u32,
-    pub first: u32,
-    pub count: u32,
-}
-
-impl GpuPrim {
-    /// The `PRIM_` kind (WGSL `prim_kind`).
-    pub fn kind(&self) -> u32 {
-        self.kind_material & 0xff
-    }
-
-    /// Index of its material (WGSL `prim_material`).
-    pub fn material(&self) -> usize {
-        (self.kind_material >> 8) as usize
-    }
-}
-
 /// One ray of a probed tree, as shaders/kernels/probe.wgsl records it.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -449,10 +418,6 @@ impl GpuScene {
     }
 }
 
-fn v4(v: Vec3, w: f32) -> [f32; 4] {
-    [v.x, v.y, v.z, w]
-}
-
 /// The bounds of the primitives the BVH holds, in object order: every
 /// primitive but the infinite planes, which have none. The input of the BVH
 /// builder, whose `order` indexes this list.
@@ -465,11 +430,6 @@ pub fn primitive_bounds(scene: &Scene) -> Vec<(Vec3, Vec3)> {
 pub fn plane_range(scene: &Scene) -> (u32, u32) {
     let planes = scene.objects.iter().flat_map(|o| &o.shapes).filter(|s| !s.is_bounded()).count();
     ((scene.primitive_count() - planes) as u32, planes as u32)
-}
-
-fn axes(normal: Vec3) -> ([f32; 4], [f32; 4]) {
-    let [u, v] = plane_axes(normal.as_dvec3());
-    (v4(u.as_vec3(), 0.0), v4(v.as_vec3(), 0.0))
 }
 
 /// Packs the scene's bounded primitives in `order` (the BVH's leaf order,
@@ -487,44 +447,7 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
         .iter()
         .map(|&i| bounded[i as usize])
         .chain(planes)
-        .map(|(object, shape, material)| {
-            let mut p = GpuPrim { object, kind_material: (material as u32) << 8, ..Zeroable::zeroed() };
-            match shape {
-                Shape::Sphere { center, radius } => {
-                    p.kind_material |= PRIM_SPHERE;
-                    p.a = v4(*center, *radius);
-                }
-                Shape::Triangle { vertices, normals } => {
-                    p.kind_material |= PRIM_TRIANGLE;
-                    (p.a, p.b, p.c) = (v4(vertices[0], 0.0), v4(vertices[1], 0.0), v4(vertices[2], 0.0));
-                    if let Some(ns) = normals {
-                        p.first = points.len() as u32;
-                        p.count = 3;
-                        points.extend(ns.iter().map(|n| v4(*n, 0.0)));
-                    }
-                }
-                Shape::Polygon { vertices } => {
-                    p.kind_material |= PRIM_POLYGON;
-                    let n = polygon_normal(vertices).unwrap_or(Vec3::Z);
-                    p.a = v4(n, n.dot(vertices[0]));
-                    (p.b, p.c) = axes(n);
-                    p.first = points.len() as u32;
-                    p.count = vertices.len() as u32;
-                    points.extend(vertices.iter().map(|v| v4(*v, 0.0)));
-                }
-                Shape::Cone { base, base_radius, apex, apex_radius } => {
-                    p.kind_material |= PRIM_CONE;
-                    p.a = v4(*base, *base_radius);
-                    p.b = v4(*apex, *apex_radius);
-                }
-                Shape::Plane { point, normal } => {
-                    p.kind_material |= PRIM_PLANE;
-                    p.a = v4(*normal, normal.dot(*point));
-                    (p.b, p.c) = axes(*normal);
-                }
-            }
-            p
-        })
+        .map(|(object, shape, material)| GpuPrim::pack(shape, object, material, &mut points))
         .collect();
     if prims.is_empty() {
         prims.push(Zeroable::zeroed());
@@ -716,28 +639,5 @@ normal = [0, 0, -1]
         let board = pack_material(&scene.materials[1]);
         assert_eq!((board.flags & MATERIAL_CHECKER, board.checker, board.checker_size), (MATERIAL_CHECKER, [1.0, 1.0, 0.0], 0.5));
         assert_eq!(pack_material(&scene.materials[0]).flags & MATERIAL_CHECKER, 0);
-    }
-
-    /// Every registered kind is packed from a shape, and each shape has the
-    /// one name every tool shows it by (`Shape::name`).
-    #[test]
-    fn every_registered_kind_is_packed_from_a_shape_with_a_name() {
-        let shapes = [
-            Shape::sphere(Vec3::ZERO, 1.0),
-            Shape::triangle([Vec3::ZERO, Vec3::X, Vec3::Y], None),
-            Shape::polygon(vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y]).map(|(shape, _)| shape),
-            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 0.5),
-            Shape::cone(Vec3::ZERO, 1.0, Vec3::Y, 1.0),
-            Shape::plane(Vec3::ZERO, Vec3::Y),
-        ];
-        let mut scene = glint_scene::toml_scene::parse(SCENE, std::path::Path::new("s.toml")).unwrap();
-        scene.objects = shapes.into_iter().map(|shape| glint_scene::Object { material: 0, shapes: vec![shape.unwrap()] }).collect();
-        let shapes: Vec<&Shape> = scene.objects.iter().flat_map(|o| &o.shapes).collect();
-        assert_eq!(shapes.iter().map(|s| s.name()).collect::<Vec<_>>(), glint_scene::SHAPE_NAMES);
-        let bvh = glint_scene::bvh::Bvh::build(&primitive_bounds(&scene));
-        let packed = pack(&scene, &bvh.order, GpuBvh::encode(&bvh).unwrap());
-        for kind in KINDS {
-            assert!(packed.prims.iter().any(|p| p.kind_material & 0xff == kind.code), "no shape is packed as {}", kind.code_name);
-        }
     }
 }
