@@ -212,7 +212,7 @@ impl std::fmt::Display for Specialization {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu_types::{GpuPrim, PRIM_CONE, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE};
+    use crate::gpu_types::{GpuPrim, PRIM_CONE, PRIM_POLYGON, PRIM_SPHERE};
     use bytemuck::Zeroable;
 
     fn of(scene: &GpuScene) -> Specialization {
@@ -250,8 +250,8 @@ mod tests {
         };
         assert_eq!(needs, want);
         assert_eq!(needs.to_string(), "triangles+cones, no refraction");
-        let mut every = scene(&[PRIM_SPHERE, PRIM_POLYGON, PRIM_TRIANGLE, PRIM_CONE, PRIM_PLANE], 1.0);
-        every.prims[2].count = 3;
+        let mut every = scene(&KINDS.iter().map(|k| k.code).collect::<Vec<_>>(), 1.0);
+        every.prims[PRIM_TRIANGLE as usize].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
         let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, max_depth: MAX_DEPTH_LIMIT, ..SceneUniforms::zeroed() };
@@ -341,7 +341,8 @@ mod tests {
     fn every_flag_is_a_wgsl_constant() {
         let wgsl = of(&scene(&[PRIM_SPHERE], 0.0)).wgsl();
         assert!(wgsl.contains("const HAS_SPHERES: bool = true;"));
-        for name in ["HAS_TRIANGLES", "HAS_POLYGONS", "HAS_CONES", "HAS_PLANES", "HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_REFRACTIONS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION", "HAS_TINTED_SHADOWS", "HAS_DEPTH_CUE"] {
+        let terms = ["HAS_SMOOTH_TRIANGLES", "HAS_SECONDARY_RAYS", "HAS_REFRACTIONS", "HAS_HIGHLIGHTS", "HAS_CHECKER", "HAS_ATTENUATION", "HAS_TINTED_SHADOWS", "HAS_DEPTH_CUE"];
+        for name in KINDS.iter().filter(|k| k.code != PRIM_SPHERE).map(|k| k.flag).chain(terms) {
             assert!(wgsl.contains(&format!("const {name}: bool = false;")), "{wgsl}");
         }
     }

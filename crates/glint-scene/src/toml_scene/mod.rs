@@ -38,6 +38,7 @@ mod tests;
 mod values;
 
 pub use notes::material_notes;
+pub use object::object_types;
 pub(crate) use object::{written_object, Written};
 
 use std::cell::RefCell;

@@ -28,6 +28,11 @@ const OBJECT_TYPES: [(&str, &[&str]); 8] = [
     ("icosphere", &["center", "radius", "subdivisions", "displacement"]),
 ];
 
+/// Every object type, in the order errors list them.
+pub fn object_types() -> impl Iterator<Item = &'static str> {
+    OBJECT_TYPES.iter().map(|(name, _)| *name)
+}
+
 /// The keys an object of type `kind` takes besides `type` and `material`.
 pub(super) fn object_keys(kind: &str) -> Option<&'static [&'static str]> {
     OBJECT_TYPES.iter().find(|(name, _)| *name == kind).map(|(_, keys)| *keys)
@@ -78,9 +83,9 @@ impl Builder<'_> {
         let material = named.unwrap_or(0);
         let kind = def.kind.get_ref().as_str();
         let Some(allowed) = object_keys(kind) else {
-            let (last, others) = OBJECT_TYPES.split_last().expect("there are object types");
-            let others: Vec<&str> = others.iter().map(|(name, _)| *name).collect();
-            return Err(self.error_at(&def.kind, format!("type: unknown object type `{kind}`, expected {} or {}", others.join(", "), last.0)));
+            let types: Vec<&str> = object_types().collect();
+            let (last, others) = types.split_last().expect("there are object types");
+            return Err(self.error_at(&def.kind, format!("type: unknown object type `{kind}`, expected {} or {last}", others.join(", "))));
         };
         let present = [
             ("center", def.center.is_some()),

@@ -42,7 +42,7 @@ use glint_scene::{LoadError, Shape};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
 
-use generate::{both_modes, Generator, mtl_text, nff_text, obj_text, toml_text, Mode};
+use generate::{both_modes, Generator, mtl_text, nff_text, obj_text, toml_object, toml_text, Mode};
 use mutate::{mutated, Index, Mutation};
 use oracle::{check_error, check_outcome, check_scene, write_case, CaseFile};
 
@@ -264,6 +264,22 @@ fn the_oracle_rejects_shapes_no_loader_keeps() {
         let mut bad = scene.clone();
         bad.objects[0].shapes = vec![shape.clone()];
         assert!(check_scene(&bad).is_err(), "{shape:?}");
+    }
+}
+
+/// The TOML generator makes every object type the loader reads: a kind added
+/// to the loader but not here would go unfuzzed.
+#[test]
+fn the_toml_generator_makes_every_object_type() {
+    use proptest::strategy::ValueTree;
+    let mut runner = TestRunner::deterministic();
+    let mut made = std::collections::BTreeSet::new();
+    for _ in 0..300 {
+        let text = toml_object(Mode::Sane).new_tree(&mut runner).unwrap().current();
+        made.extend(text.lines().filter_map(|line| line.strip_prefix("type = \"")?.strip_suffix('"')).map(String::from));
+    }
+    for kind in glint_scene::toml_scene::object_types() {
+        assert!(made.contains(kind), "no `{kind}` among {made:?}");
     }
 }
 
