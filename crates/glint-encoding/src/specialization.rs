@@ -212,7 +212,7 @@ impl std::fmt::Display for Specialization {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu_types::{GpuPrim, PRIM_CONE, PRIM_POLYGON, PRIM_SPHERE};
+    use crate::gpu_types::{GpuPrim, PRIM_PLANE, PRIM_POLYGON, PRIM_SPHERE};
     use bytemuck::Zeroable;
 
     fn of(scene: &GpuScene) -> Specialization {
@@ -234,9 +234,9 @@ mod tests {
 
     #[test]
     fn a_scene_specialises_to_the_kinds_it_holds() {
-        let needs = of(&scene(&[PRIM_TRIANGLE, PRIM_CONE, PRIM_TRIANGLE], 0.5));
+        let needs = of(&scene(&[PRIM_TRIANGLE, PRIM_PLANE, PRIM_TRIANGLE], 0.5));
         let want = Specialization {
-            kinds: 1 << PRIM_TRIANGLE | 1 << PRIM_CONE,
+            kinds: 1 << PRIM_TRIANGLE | 1 << PRIM_PLANE,
             smooth_triangles: false,
             secondary_rays: true,
             refractions: false,
@@ -249,7 +249,7 @@ mod tests {
             max_depth: 1,
         };
         assert_eq!(needs, want);
-        assert_eq!(needs.to_string(), "triangles+cones, no refraction");
+        assert_eq!(needs.to_string(), "triangles+planes, no refraction");
         let mut every = scene(&KINDS.iter().map(|k| k.code).collect::<Vec<_>>(), 1.0);
         every.prims[PRIM_TRIANGLE as usize].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
