@@ -91,7 +91,7 @@ impl Specialization {
         };
         for p in &scene.prims {
             let kind = p.kind();
-            assert!(primitive_kinds::kind(kind).is_some(), "primitive kind {kind} is not packed by gpu_types");
+            assert!(primitive_kinds::kind(kind).is_some(), "primitive kind {kind} is not in the registry (primitive_kinds.rs)");
             needs.kinds |= 1 << kind;
             needs.smooth_triangles |= kind == PRIM_TRIANGLE && p.count == 3;
         }
