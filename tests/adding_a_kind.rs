@@ -3,6 +3,8 @@
 //! no other source file names the cone's kind but a short list of the cone's
 //! own tests; and the scene format's page names every object type.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 
 /// How code names the cone's kind: its variant, the reference's geometry and
@@ -41,20 +43,6 @@ fn recipe() -> Vec<PathBuf> {
         .collect()
 }
 
-/// Every `.rs` and `.wgsl` file under `dir`, build output left out.
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            if !["target", "node_modules", ".git"].iter().any(|skip| path.ends_with(skip)) {
-                sources(&path, out);
-            }
-        } else if path.extension().is_some_and(|e| e == "rs" || e == "wgsl") {
-            out.push(path);
-        }
-    }
-}
-
 #[test]
 fn the_recipe_lists_at_most_eight_files_each_handling_the_cone() {
     let steps = recipe();
@@ -69,7 +57,7 @@ fn no_source_file_outside_the_recipe_names_the_cone_s_kind() {
     let steps = recipe();
     let mut files = Vec::new();
     for dir in ["crates", "tests", "shaders"] {
-        sources(&root().join(dir), &mut files);
+        support::source_files(&root().join(dir), &["rs", "wgsl"], &mut files);
     }
     // This file names the words it looks for.
     files.retain(|f| *f != root().join(file!()));

@@ -48,3 +48,26 @@ fn devices_open_with_webgpus_default_limits_and_raise_one_a_scene_needs() {
     assert!(raised.raised_for(&need("max_texture_dimension_2d")).is_none(), "raised once, the error stands");
     assert!(gpu.raised_for(&GpuError::Runtime("lost".into())).is_none());
 }
+
+/// The profile is the one owner of driver decisions: the front ends and the
+/// scene crate never name a driver or its environment.
+#[test]
+fn the_front_ends_and_the_scene_crate_name_no_driver() {
+    let words = ["lavapipe", "GALLIVM", "LP_NATIVE"];
+    let mut files = Vec::new();
+    for krate in ["glint-cli", "glint-viewer", "glint-scene"] {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crates").join(krate);
+        support::source_files(&dir, &["rs", "toml", "md"], &mut files);
+    }
+    assert!(files.iter().any(|f| f.ends_with("glint-cli/src/main.rs")), "the walk found the front ends");
+    let mut found = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        for (i, line) in text.lines().enumerate() {
+            if words.iter().any(|w| line.contains(w)) {
+                found.push(format!("{}:{}: {}", file.display(), i + 1, line.trim()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "driver decisions outside the device profile:\n{}", found.join("\n"));
+}

@@ -69,3 +69,17 @@ pub fn assert_images_equal(a: &[[f32; 4]], b: &[[f32; 4]], allowed: usize, what:
         &differing[..differing.len().min(3)]
     );
 }
+
+/// The files under `dir` with one of `extensions`, at any depth, build output left out.
+pub fn source_files(dir: &Path, extensions: &[&str], out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            if !["target", "node_modules", ".git"].iter().any(|skip| path.ends_with(skip)) {
+                source_files(&path, extensions, out);
+            }
+        } else if path.extension().is_some_and(|e| extensions.iter().any(|x| e == *x)) {
+            out.push(path);
+        }
+    }
+}

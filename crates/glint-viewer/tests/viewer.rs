@@ -18,7 +18,7 @@ use glint_gpu::shaders::{ShaderSource, SOURCES};
 use support::{click, harness, image_of, mean_difference, press, screen_pos, settle, wait_for, write_scene, RED_SPHERE, SCENE};
 
 /// eframe opens the device that `glint render` opens: the same profile (on
-/// lavapipe, eye tiles and their subgroups) and WebGPU's default limits but
+/// CI's software adapter, eye tiles and their subgroups) and WebGPU's default limits but
 /// for those of a scene's size, which it cannot raise later.
 #[test]
 fn the_viewer_opens_the_device_its_profile_expects() {
