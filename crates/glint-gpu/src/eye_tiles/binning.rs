@@ -19,12 +19,17 @@
 use std::ops::Range;
 
 use glam::Vec3;
+use rayon::prelude::*;
 use glint_encoding::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
 
 /// The most entries the lists may hold per tile on average: beyond that a
 /// tile's list costs its rays more than the BVH walk (gears at 512×512, the
 /// most crowded classic scene, holds 37).
 pub const MAX_MEAN_ENTRIES: usize = 64;
+
+/// How many primitives a core takes at a time: enough to repay handing them
+/// over.
+const SHARE: usize = 1024;
 
 /// Pixels by which a primitive's projected rectangle is grown, besides a
 /// share of its coordinates: far more than the rounding of the projection
@@ -94,48 +99,56 @@ impl Footprints {
         let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
         let tiles = across * down;
         // Binned nearest first, so every tile's entries come out in that order.
-        let near: Vec<f32> = self.prims.iter().map(|f| view.near(f)).collect();
+        let near: Vec<f32> = self.prims.par_iter().with_min_len(SHARE).map(|f| view.near(f)).collect();
         let order = nearest_first(&near);
-        // Each half of that order covered on a core of its own.
-        let (nearer, farther) = order.split_at(order.len() / 2);
-        let cover = |prims: &[u32]| {
-            let mut covered = Covered { tiles: Vec::new(), runs: Vec::with_capacity(prims.len()), outline: Outline::default() };
-            for &i in prims {
-                let start = covered.tiles.len();
-                view.cover(&self.points[self.prims[i as usize].points.clone()], across, down, &mut covered.outline, &mut covered.tiles);
-                covered.runs.push(covered.tiles.len() - start);
-            }
-            covered
-        };
-        let halves = both(|| cover(nearer), || cover(farther));
-        let entries = halves.0.tiles.len() + halves.1.tiles.len();
+        // Each share of that order covered on whichever core is free.
+        let shares: Vec<Covered> = order
+            .par_chunks(SHARE)
+            .map(|prims| {
+                let mut covered = Covered { tiles: Vec::new(), runs: Vec::with_capacity(prims.len()), outline: Outline::default() };
+                for &i in prims {
+                    let start = covered.tiles.len();
+                    view.cover(&self.points[self.prims[i as usize].points.clone()], across, down, &mut covered.outline, &mut covered.tiles);
+                    covered.runs.push(covered.tiles.len() - start);
+                }
+                covered
+            })
+            .collect();
+        let entries = shares.iter().map(|share| share.tiles.len()).sum::<usize>();
         if entries > MAX_MEAN_ENTRIES * tiles || 2 * tiles + 2 * entries > u32::MAX as usize {
             return None;
         }
         let mut counts = vec![0u32; tiles];
-        for &tile in halves.0.tiles.iter().chain(&halves.1.tiles) {
+        for &tile in shares.iter().flat_map(|share| &share.tiles) {
             counts[tile as usize] += 1;
         }
-        // `next[tile]`: where the tile's next entry goes.
         let mut words = vec![0u32; 2 * tiles + 2 * entries];
-        let mut next = Vec::with_capacity(tiles);
+        let (heads, lists) = words.split_at_mut(2 * tiles);
         let mut first = 2 * tiles as u32;
-        for (tile, &count) in counts.iter().enumerate() {
-            (words[2 * tile], words[2 * tile + 1]) = (first, count);
-            next.push(first);
+        for (head, &count) in heads.chunks_exact_mut(2).zip(&counts) {
+            head.copy_from_slice(&[first, count]);
             first += 2 * count;
         }
-        for (prims, covered) in [(nearer, &halves.0), (farther, &halves.1)] {
-            let mut tiles_of = covered.tiles.iter();
-            for (&i, &run) in prims.iter().zip(&covered.runs) {
-                for &tile in tiles_of.by_ref().take(run) {
-                    let (slot, count) = (next[tile as usize] as usize, counts[tile as usize] as usize);
-                    words[slot] = i;
-                    words[slot + count] = near[i as usize].to_bits();
-                    next[tile as usize] += 1;
+        // The entries of the first half of the tiles, then the second's: each
+        // half filled on a core of its own.
+        let fill = |tiles: Range<usize>, lists: &mut [u32]| {
+            let offset = heads.get(2 * tiles.start).map_or(0, |&first| first as usize);
+            let mut next: Vec<usize> = tiles.clone().map(|tile| heads[2 * tile] as usize - offset).collect();
+            for (prims, share) in order.chunks(SHARE).zip(&shares) {
+                let mut tiles_of = share.tiles.iter().map(|&tile| tile as usize);
+                for (&i, &run) in prims.iter().zip(&share.runs) {
+                    for tile in tiles_of.by_ref().take(run).filter(|tile| tiles.contains(tile)) {
+                        let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
+                        lists[*slot] = i;
+                        lists[*slot + count] = near[i as usize].to_bits();
+                        *slot += 1;
+                    }
                 }
             }
-        }
+        };
+        let middle = tiles / 2;
+        let (low, high) = lists.split_at_mut(heads[2 * middle] as usize - 2 * tiles);
+        rayon::join(|| fill(0..middle, low), || fill(middle..tiles, high));
         Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
     }
 }
@@ -146,17 +159,6 @@ struct Covered {
     tiles: Vec<u32>,
     runs: Vec<usize>,
     outline: Outline,
-}
-
-/// `a()` and `b()`, on two threads where there are threads.
-fn both<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
-    if cfg!(target_family = "wasm") {
-        return (a(), b());
-    }
-    std::thread::scope(|scope| {
-        let b = scope.spawn(b);
-        (a(), b.join().expect("binning does not panic"))
-    })
 }
 
 /// The indices of `near` by distance, equal distances by index, as
@@ -396,7 +398,7 @@ impl Outline {
         edges.extend((0..n).map(|i| {
             let (a, b) = (hull[i], hull[next(i)]);
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let length = dx.hypot(dy);
+            let length = (dx * dx + dy * dy).sqrt();
             (a, [dy / length, -dx / length])
         }));
         true

@@ -264,5 +264,3 @@ fn beyond_an_edge(edges: &[Edge], [x0, y0, x1, y1]: [f64; 4], margin: f64) -> bo
         (nearest[0] - a[0]) * n[0] + (nearest[1] - a[1]) * n[1] > margin
     })
 }
-
-
