@@ -18,7 +18,8 @@ pub(crate) struct EyeTileBinding {
     camera: Option<GpuCamera>,
     prims: wgpu::Buffer,
     /// Where the lists are: a new view's lists are written over the last
-    /// ones while they fit, so a camera move allocates nothing on the device.
+    /// ones while they fit, so a camera move allocates nothing on the device
+    /// (docs/decisions/048-cheaper-eye-tile-binning.md).
     lists: wgpu::Buffer,
 }
 

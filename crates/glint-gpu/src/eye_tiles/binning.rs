@@ -93,7 +93,8 @@ impl Footprints {
     }
 
     /// The lists for `camera` at `width` × `height`, or `None` when they would
-    /// be too long to beat the BVH (`MAX_MEAN_ENTRIES`).
+    /// be too long to beat the BVH (`MAX_MEAN_ENTRIES`). Done for every view,
+    /// so on every core (docs/decisions/048-cheaper-eye-tile-binning.md).
     pub fn bin(&self, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
         let view = View::new(camera, width, height);
         let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
