@@ -6,18 +6,21 @@
 pub mod binning;
 
 use glint_encoding::gpu_types::{DispatchParams, GpuCamera, EYE_TILE_HEIGHT, EYE_TILE_WIDTH};
-use wgpu::util::DeviceExt;
 
 use binning::Footprints;
 use crate::{Renderer, SceneBuffers};
 
 /// A scene's eye tiles as bound: the lists, for the camera they were built
-/// for (none: empty lists, which no kernel reads), and the primitives' buffer
-/// to bind beside them.
+/// for (none: lists no kernel reads), and the primitives' buffer to bind
+/// beside them.
 pub(crate) struct EyeTileBinding {
     pub(crate) bind: wgpu::BindGroup,
     camera: Option<GpuCamera>,
     prims: wgpu::Buffer,
+    /// Where the lists are: a new view's lists are written over the last
+    /// ones while they fit, so a camera move allocates nothing on the device
+    /// (docs/decisions/048-cheaper-eye-tile-binning.md).
+    lists: wgpu::Buffer,
 }
 
 pub(crate) fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -38,8 +41,8 @@ impl Renderer {
     /// What a scene uploaded with `prims` (its primitives' storage buffer, or
     /// `None` when the kernels read textures) binds before any lists.
     pub(crate) fn no_eye_tiles(&self, prims: Option<&wgpu::Buffer>) -> EyeTileBinding {
-        let prims = prims.cloned().unwrap_or_else(|| self.storage("no primitives", &[0; 16]));
-        self.eye_tile_binding(&[0; 2], prims, None)
+        let prims = prims.cloned().unwrap_or_else(|| self.device.create_buffer(&storage("no primitives", 16)));
+        self.eye_tile_binding(8, prims)
     }
 
     /// Bins `footprints` for `camera` and binds the lists, when the device can
@@ -48,18 +51,25 @@ impl Renderer {
     pub(crate) fn bin_eye_tiles(&self, scene: &mut SceneBuffers, footprints: &Footprints, camera: &GpuCamera) -> bool {
         let tiles = self.profile.eye_tiles.then(|| footprints.bin(camera, scene.width, scene.height)).flatten();
         let limit = self.device.limits().max_storage_buffer_binding_size;
-        let tiles = tiles.filter(|t| (t.words.len() as u64) * 4 <= limit);
-        let prims = scene.eye_tiles.prims.clone();
-        scene.eye_tiles = match &tiles {
-            Some(t) => self.eye_tile_binding(&t.words, prims, Some(*camera)),
-            None => self.eye_tile_binding(&[0; 2], prims, None),
+        let Some(tiles) = tiles.filter(|t| (t.words.len() as u64) * 4 <= limit) else {
+            scene.eye_tiles.camera = None;
+            scene.tuning.eye_tiles = false;
+            return false;
         };
-        scene.tuning.eye_tiles = tiles.is_some();
-        tiles.is_some()
+        let bytes: &[u8] = bytemuck::cast_slice(&tiles.words);
+        if bytes.len() as u64 > scene.eye_tiles.lists.size() {
+            // Room to spare, for the next views' lists to fit.
+            let room = (bytes.len() as u64 + bytes.len() as u64 / 4).next_multiple_of(4).min(limit);
+            scene.eye_tiles = self.eye_tile_binding(room, scene.eye_tiles.prims.clone());
+        }
+        self.queue.write_buffer(&scene.eye_tiles.lists, 0, bytes);
+        scene.eye_tiles.camera = Some(*camera);
+        scene.tuning.eye_tiles = true;
+        true
     }
 
-    fn eye_tile_binding(&self, words: &[u32], prims: wgpu::Buffer, camera: Option<GpuCamera>) -> EyeTileBinding {
-        let lists = self.storage("eye tiles", bytemuck::cast_slice(words));
+    fn eye_tile_binding(&self, size: u64, prims: wgpu::Buffer) -> EyeTileBinding {
+        let lists = self.device.create_buffer(&storage("eye tiles", size));
         let bind = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("eye tiles"),
             layout: &self.eye_tiles_layout,
@@ -68,12 +78,12 @@ impl Renderer {
                 wgpu::BindGroupEntry { binding: 1, resource: prims.as_entire_binding() },
             ],
         });
-        EyeTileBinding { bind, camera, prims }
+        EyeTileBinding { bind, camera: None, prims, lists }
     }
+}
 
-    fn storage(&self, label: &str, contents: &[u8]) -> wgpu::Buffer {
-        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage: wgpu::BufferUsages::STORAGE })
-    }
+fn storage(label: &str, size: u64) -> wgpu::BufferDescriptor<'_> {
+    wgpu::BufferDescriptor { label: Some(label), size, usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST, mapped_at_creation: false }
 }
 
 impl SceneBuffers {

@@ -16,13 +16,20 @@
 //! it can be nearer than, with room for rounding, and a tile's entries are in
 //! order of it.
 
+use std::ops::Range;
+
 use glam::Vec3;
+use rayon::prelude::*;
 use glint_encoding::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
 
 /// The most entries the lists may hold per tile on average: beyond that a
 /// tile's list costs its rays more than the BVH walk (gears at 512×512, the
 /// most crowded classic scene, holds 37).
 pub const MAX_MEAN_ENTRIES: usize = 64;
+
+/// How many primitives a core takes at a time: enough to repay handing them
+/// over.
+const SHARE: usize = 1024;
 
 /// Pixels by which a primitive's projected rectangle is grown, besides a
 /// share of its coordinates: far more than the rounding of the projection
@@ -49,7 +56,7 @@ pub struct Footprints {
 struct Footprint {
     lo: Vec3,
     hi: Vec3,
-    points: std::ops::Range<usize>,
+    points: Range<usize>,
 }
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
@@ -86,48 +93,99 @@ impl Footprints {
     }
 
     /// The lists for `camera` at `width` × `height`, or `None` when they would
-    /// be too long to beat the BVH (`MAX_MEAN_ENTRIES`).
+    /// be too long to beat the BVH (`MAX_MEAN_ENTRIES`). Done for every view,
+    /// so on every core (docs/decisions/048-cheaper-eye-tile-binning.md).
     pub fn bin(&self, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
         let view = View::new(camera, width, height);
         let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
         let tiles = across * down;
         // Binned nearest first, so every tile's entries come out in that order.
-        let near: Vec<f32> = self.prims.iter().map(|f| view.near(f)).collect();
-        let mut order: Vec<u32> = (0..self.prims.len() as u32).collect();
-        order.sort_unstable_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]).then(a.cmp(&b)));
-        // Each primitive's tiles, one run of `covered` each.
-        let (mut covered, mut runs, mut projected) = (Vec::new(), Vec::with_capacity(self.prims.len()), Vec::new());
-        for f in &self.prims {
-            let start = covered.len();
-            view.cover(&self.points[f.points.clone()], across, down, &mut projected, &mut covered);
-            runs.push(start..covered.len());
-        }
-        let mut counts = vec![0usize; tiles];
-        for &tile in &covered {
-            counts[tile as usize] += 1;
-        }
-        let entries: usize = counts.iter().sum();
+        let near: Vec<f32> = self.prims.par_iter().with_min_len(SHARE).map(|f| view.near(f)).collect();
+        let order = nearest_first(&near);
+        // Each share of that order covered on whichever core is free.
+        let shares: Vec<Covered> = order
+            .par_chunks(SHARE)
+            .map(|prims| {
+                let mut covered = Covered { tiles: Vec::new(), runs: Vec::with_capacity(prims.len()), outline: Outline::default() };
+                for &i in prims {
+                    let start = covered.tiles.len();
+                    view.cover(&self.points[self.prims[i as usize].points.clone()], across, down, &mut covered.outline, &mut covered.tiles);
+                    covered.runs.push(covered.tiles.len() - start);
+                }
+                covered
+            })
+            .collect();
+        let entries = shares.iter().map(|share| share.tiles.len()).sum::<usize>();
         if entries > MAX_MEAN_ENTRIES * tiles || 2 * tiles + 2 * entries > u32::MAX as usize {
             return None;
         }
+        let mut counts = vec![0u32; tiles];
+        for &tile in shares.iter().flat_map(|share| &share.tiles) {
+            counts[tile as usize] += 1;
+        }
         let mut words = vec![0u32; 2 * tiles + 2 * entries];
-        let mut next = 2 * tiles;
-        for (tile, &count) in counts.iter().enumerate() {
-            words[2 * tile] = next as u32;
-            words[2 * tile + 1] = 0;
-            next += 2 * count;
+        let (heads, lists) = words.split_at_mut(2 * tiles);
+        let mut first = 2 * tiles as u32;
+        for (head, &count) in heads.chunks_exact_mut(2).zip(&counts) {
+            head.copy_from_slice(&[first, count]);
+            first += 2 * count;
         }
-        for &i in &order {
-            for &tile in &covered[runs[i as usize].clone()] {
-                let tile = tile as usize;
-                let (first, filled) = (words[2 * tile] as usize, words[2 * tile + 1] as usize);
-                words[first + filled] = i;
-                words[first + counts[tile] + filled] = near[i as usize].to_bits();
-                words[2 * tile + 1] += 1;
+        // The entries of the first half of the tiles, then the second's: each
+        // half filled on a core of its own.
+        let fill = |tiles: Range<usize>, lists: &mut [u32]| {
+            let offset = heads.get(2 * tiles.start).map_or(0, |&first| first as usize);
+            let mut next: Vec<usize> = tiles.clone().map(|tile| heads[2 * tile] as usize - offset).collect();
+            for (prims, share) in order.chunks(SHARE).zip(&shares) {
+                let mut tiles_of = share.tiles.iter().map(|&tile| tile as usize);
+                for (&i, &run) in prims.iter().zip(&share.runs) {
+                    for tile in tiles_of.by_ref().take(run).filter(|tile| tiles.contains(tile)) {
+                        let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
+                        lists[*slot] = i;
+                        lists[*slot + count] = near[i as usize].to_bits();
+                        *slot += 1;
+                    }
+                }
             }
-        }
+        };
+        let middle = tiles / 2;
+        let (low, high) = lists.split_at_mut(heads[2 * middle] as usize - 2 * tiles);
+        rayon::join(|| fill(0..middle, low), || fill(middle..tiles, high));
         Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
     }
+}
+
+/// Some primitives' tiles, one run of `tiles` each, with the room their
+/// outlines took.
+struct Covered {
+    tiles: Vec<u32>,
+    runs: Vec<usize>,
+    outline: Outline,
+}
+
+/// The indices of `near` by distance, equal distances by index, as
+/// `f32::total_cmp` orders them: a radix sort of 11 bits a pass, each pass
+/// keeping the order of the one before among equal digits.
+fn nearest_first(near: &[f32]) -> Vec<u32> {
+    const DIGIT: u32 = 11;
+    let keys: Vec<u32> = near.iter().map(|&d| sortable_bits(d)).collect();
+    let (mut order, mut spare): (Vec<u32>, Vec<u32>) = ((0..near.len() as u32).collect(), vec![0; near.len()]);
+    for shift in (0..32).step_by(DIGIT as usize) {
+        let digit = |i: u32| (keys[i as usize] >> shift & ((1 << DIGIT) - 1)) as usize;
+        let mut starts = [0usize; 1 << DIGIT];
+        for &i in &order {
+            starts[digit(i)] += 1;
+        }
+        let mut sum = 0;
+        for start in &mut starts {
+            (sum, *start) = (sum + *start, sum);
+        }
+        for &i in &order {
+            spare[starts[digit(i)]] = i;
+            starts[digit(i)] += 1;
+        }
+        std::mem::swap(&mut order, &mut spare);
+    }
+    order
 }
 
 impl EyeTiles {
@@ -181,23 +239,67 @@ impl View {
     }
 
     /// Appends to `covered` the tiles with a pixel centre whose eye ray can
-    /// hit what `points` bound: none when all of it is behind the eye, where
-    /// no eye ray goes. Those its projection's bounding rectangle reaches,
-    /// less those wholly beyond one of the edges of its convex hull.
-    /// `projected` is room.
-    fn cover(&self, points: &[Vec3], across: usize, down: usize, projected: &mut Vec<[f32; 2]>, covered: &mut Vec<u32>) {
-        let mut all = || covered.extend(0..(across * down) as u32);
-        let in_front = |p: Vec3| (p - self.eye).dot(-self.w) > 1e-6 * (p - self.eye).length();
-        if !points.iter().any(|&p| in_front(p)) {
-            return;
+    /// hit what `points` bound, row by row: those its projection's bounding
+    /// rectangle reaches, less those wholly beyond one of the edges of its
+    /// convex hull.
+    fn cover(&self, points: &[Vec3], across: usize, down: usize, outline: &mut Outline, covered: &mut Vec<u32>) {
+        match self.reach(points, across, down, &mut outline.projected) {
+            Reach::Nowhere => {}
+            Reach::Everywhere => covered.extend(0..(across * down) as u32),
+            Reach::Within { columns, rows, margin } => {
+                if !outline.hull() {
+                    outline.edges.clear();
+                }
+                let Outline { edges, row_terms, .. } = outline;
+                // An edge takes tiles from the rectangle only if its corner
+                // tile farthest out lies beyond it: the distance of a tile's
+                // nearest pixel centre beyond an edge grows (or shrinks) along
+                // the rectangle's rows and columns, rounding included.
+                edges.retain(|edge| {
+                    let outmost = |n: f64, tiles: &Range<usize>| if n > 0.0 { tiles.end - 1 } else { tiles.start };
+                    column_term(edge, outmost(edge.1[0], &columns)) + row_term(edge, outmost(edge.1[1], &rows)) > margin
+                });
+                if edges.is_empty() {
+                    return covered.extend(rows.flat_map(|y| (y * across + columns.start) as u32..(y * across + columns.end) as u32));
+                }
+                for y in rows {
+                    row_terms.clear();
+                    row_terms.extend(edges.iter().map(|edge| row_term(edge, y)));
+                    let beyond = |x: usize| edges.iter().zip(row_terms.iter()).any(|(edge, &row)| column_term(edge, x) + row > margin);
+                    // So along a row, the tiles beyond an edge lead or trail
+                    // it, and the rest are one run.
+                    let Some(first) = columns.clone().find(|&x| !beyond(x)) else { continue };
+                    let last = (first + 1..columns.end).rev().find(|&x| !beyond(x)).unwrap_or(first);
+                    covered.extend((y * across + first) as u32..=(y * across + last) as u32);
+                }
+            }
+        }
+    }
+
+    /// Which tiles' eye rays may hit what `points` bound, leaving their
+    /// projections in `projected`: none when all of it is behind the eye,
+    /// where no eye ray goes.
+    fn reach(&self, points: &[Vec3], across: usize, down: usize, projected: &mut Vec<[f32; 2]>) -> Reach {
+        projected.clear();
+        let mut in_front = 0;
+        for &p in points {
+            let q = p - self.eye;
+            let depth = q.dot(-self.w);
+            if depth > 1e-6 * q.length() {
+                in_front += 1;
+                projected.push(self.project(q, depth));
+            } else if self.orthographic {
+                projected.push(self.project(q, depth));
+            }
+        }
+        if in_front == 0 {
+            return Reach::Nowhere;
         }
         // A point beside or behind the eye projects to no point of the image:
         // the primitive may then cross any eye ray.
-        if !self.orthographic && !points.iter().all(|&p| in_front(p)) {
-            return all();
+        if in_front < points.len() && !self.orthographic {
+            return Reach::Everywhere;
         }
-        projected.clear();
-        projected.extend(points.iter().map(|&p| self.project(p)));
         let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
         for pixel in projected.iter() {
             for axis in 0..2 {
@@ -206,7 +308,7 @@ impl View {
             }
         }
         if !(lo.iter().chain(&hi).all(|x| x.is_finite())) {
-            return all();
+            return Reach::Everywhere;
         }
         let margin = MARGIN_PIXELS + MARGIN_SHARE * lo.iter().chain(&hi).fold(0.0f32, |m, x| m.max(x.abs()));
         // Tile t's pixel centres run from side·t + ½ to side·t + side − ½.
@@ -216,70 +318,113 @@ impl View {
             let last = ((hi[axis] + margin - 0.5) / side).floor().min(count as f32 - 1.0);
             if first > last { 0..0 } else { first as usize..last as usize + 1 }
         };
-        let edges = hull_edges(projected);
-        let (w, h) = (f64::from(EYE_TILE_WIDTH), f64::from(EYE_TILE_HEIGHT));
-        for y in range(1, EYE_TILE_HEIGHT, down) {
-            for x in range(0, EYE_TILE_WIDTH, across) {
-                let centres = [x as f64 * w + 0.5, y as f64 * h + 0.5, x as f64 * w + w - 0.5, y as f64 * h + h - 0.5];
-                if edges.as_ref().is_none_or(|edges| !beyond_an_edge(edges, centres, f64::from(margin))) {
-                    covered.push((y * across + x) as u32);
-                }
-            }
+        let (columns, rows) = (range(0, EYE_TILE_WIDTH, across), range(1, EYE_TILE_HEIGHT, down));
+        if columns.is_empty() || rows.is_empty() {
+            return Reach::Nowhere;
         }
+        Reach::Within { columns, rows, margin: f64::from(margin) }
     }
 
     /// Where on the image (in pixels, (0, 0) its top-left corner) the eye ray
-    /// through `p`, a point in front of the eye, passes.
-    fn project(&self, p: Vec3) -> [f32; 2] {
-        let q = p - self.eye;
-        let (us, vs) = if self.orthographic { (q.dot(self.u), q.dot(self.v)) } else {
-            let depth = q.dot(-self.w);
-            (q.dot(self.u) / depth, q.dot(self.v) / depth)
-        };
+    /// through `eye + q` passes, a point `depth` in front of the eye.
+    fn project(&self, q: Vec3, depth: f32) -> [f32; 2] {
+        let (us, vs) = if self.orthographic { (q.dot(self.u), q.dot(self.v)) } else { (q.dot(self.u) / depth, q.dot(self.v) / depth) };
         [(us + self.half_width) / (2.0 * self.half_width) * self.width, (self.half_height - vs) / (2.0 * self.half_height) * self.height]
     }
 }
 
-/// The edges of the convex hull of `projected` (Andrew's monotone chain) as
-/// lines `(a, n)` through point a with unit normal n pointing out of it, if
-/// the hull has an inside.
-fn hull_edges(projected: &[[f32; 2]]) -> Option<Vec<([f64; 2], [f64; 2])>> {
-    let mut points: Vec<[f64; 2]> = projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]).collect();
-    points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * points.len());
-    for pass in [points.clone(), points.into_iter().rev().collect()] {
-        let start = hull.len();
-        for p in pass {
-            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        hull.pop();
-    }
-    let n = hull.len();
-    let area: f64 = (0..n).map(|i| hull[i][0] * hull[(i + 1) % n][1] - hull[(i + 1) % n][0] * hull[i][1]).sum();
-    if n < 3 || area < 1e-6 {
-        return None;
-    }
-    // Counter-clockwise: outward is to the right of each edge.
-    let edges = (0..n).map(|i| {
-        let (a, b) = (hull[i], hull[(i + 1) % n]);
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let length = dx.hypot(dy);
-        (a, [dy / length, -dx / length])
-    });
-    Some(edges.collect())
+/// The tiles a footprint's projection may reach: a rectangle of them, each
+/// grown by `margin` pixels for rounding.
+enum Reach {
+    Nowhere,
+    Everywhere,
+    Within { columns: Range<usize>, rows: Range<usize>, margin: f64 },
 }
 
-/// Whether every point of the rectangle `[x0, y0, x1, y1]` lies farther than
-/// `margin` outside one of `edges`.
-fn beyond_an_edge(edges: &[([f64; 2], [f64; 2])], [x0, y0, x1, y1]: [f64; 4], margin: f64) -> bool {
-    edges.iter().any(|&(a, n)| {
-        let nearest = [if n[0] > 0.0 { x0 } else { x1 }, if n[1] > 0.0 { y0 } else { y1 }];
-        (nearest[0] - a[0]) * n[0] + (nearest[1] - a[1]) * n[1] > margin
-    })
+/// A line `(a, n)` through point a with unit normal n.
+type Edge = ([f64; 2], [f64; 2]);
+
+/// One footprint's projection and outline on the image, with room reused
+/// from one primitive to the next.
+#[derive(Default)]
+struct Outline {
+    projected: Vec<[f32; 2]>,
+    sorted: Vec<[f64; 2]>,
+    hull: Vec<[f64; 2]>,
+    edges: Vec<Edge>,
+    /// Each edge's term from a row of tiles.
+    row_terms: Vec<f64>,
+}
+
+impl Outline {
+    /// Makes `edges` those of the convex hull of `projected` (Andrew's
+    /// monotone chain), their normals pointing out of it. False when the hull
+    /// has no inside.
+    fn hull(&mut self) -> bool {
+        let Outline { projected, sorted: points, hull, edges, .. } = self;
+        points.clear();
+        points.extend(projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]));
+        // By x, then y: an insertion sort, as there are few.
+        for k in 1..points.len() {
+            let p = points[k];
+            let mut j = k;
+            while j > 0 && (points[j - 1][0].total_cmp(&p[0]).then(points[j - 1][1].total_cmp(&p[1]))).is_gt() {
+                points[j] = points[j - 1];
+                j -= 1;
+            }
+            points[j] = p;
+        }
+        let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+        hull.clear();
+        // The lower hull left to right, then the upper one back.
+        for backwards in [false, true] {
+            let start = hull.len();
+            for k in 0..points.len() {
+                let p = points[if backwards { points.len() - 1 - k } else { k }];
+                while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                    hull.pop();
+                }
+                hull.push(p);
+            }
+            hull.pop();
+        }
+        let n = hull.len();
+        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+        let area: f64 = (0..n).map(|i| hull[i][0] * hull[next(i)][1] - hull[next(i)][0] * hull[i][1]).sum();
+        if n < 3 || area < 1e-6 {
+            return false;
+        }
+        // Counter-clockwise: outward is to the right of each edge.
+        edges.clear();
+        edges.extend((0..n).map(|i| {
+            let (a, b) = (hull[i], hull[next(i)]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let length = (dx * dx + dy * dy).sqrt();
+            (a, [dy / length, -dx / length])
+        }));
+        true
+    }
+}
+
+/// How far beyond `edge`, along its normal, tile column `x`'s pixel centres
+/// nearest it lie: the part of that distance across. A tile lies beyond an
+/// edge when this and its `row_term` add up to more than the margin.
+fn column_term(&(a, n): &Edge, x: usize) -> f64 {
+    let x0 = f64::from(x as u32 * EYE_TILE_WIDTH);
+    (if n[0] > 0.0 { x0 + 0.5 } else { x0 + f64::from(EYE_TILE_WIDTH) - 0.5 } - a[0]) * n[0]
+}
+
+/// The part down of the distance beyond `edge` of tile row `y`'s pixel
+/// centres nearest it.
+fn row_term(&(a, n): &Edge, y: usize) -> f64 {
+    let y0 = f64::from(y as u32 * EYE_TILE_HEIGHT);
+    (if n[1] > 0.0 { y0 + 0.5 } else { y0 + f64::from(EYE_TILE_HEIGHT) - 0.5 } - a[1]) * n[1]
+}
+
+/// `d`'s bits as a key that sorts as `f32::total_cmp` orders `d`.
+fn sortable_bits(d: f32) -> u32 {
+    let bits = d.to_bits();
+    if bits >> 31 == 1 { !bits } else { bits | 1 << 31 }
 }
 
 fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {

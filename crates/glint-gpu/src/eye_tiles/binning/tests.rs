@@ -1,7 +1,10 @@
 use bytemuck::Zeroable;
 use glam::{DVec3, Vec3};
-use glint_encoding::gpu_types::{GpuPrim, PROJECTION_PERSPECTIVE};
+use glint_encoding::gpu_bvh::GpuBvh;
+use glint_encoding::gpu_types::{self, GpuPrim, PROJECTION_PERSPECTIVE};
+use glint_scene::bvh::Bvh;
 use glint_scene::test_rng::Rng;
+use glint_scene::{polygon_split, spd, Camera, Projection, Scene};
 
 use super::*;
 
@@ -166,3 +169,98 @@ fn lists_longer_than_the_bvh_repays_are_not_built() {
     assert!(footprints(&crowded[1..]).bin(&camera, WIDTH, HEIGHT).is_some());
 }
 
+
+#[test]
+fn binning_lists_what_the_reference_binning_lists() {
+    let mut rng = Rng(29);
+    let random = footprints(&triangles(&mut rng));
+    for projection in [PROJECTION_PERSPECTIVE, PROJECTION_ORTHOGRAPHIC] {
+        let lists = random.bin(&camera(projection), WIDTH, HEIGHT);
+        assert!(lists.is_some() && lists == reference_bin(&random, &camera(projection), WIDTH, HEIGHT), "random triangles around the eye");
+    }
+    let mut binned = 0;
+    for name in ["gears", "tetra", "balls", "mount", "teapot"] {
+        let mut scene = glint_scene::load(format!("{}{name}", spd::PREFIX).as_ref()).unwrap();
+        let footprints = scene_footprints(&scene);
+        let (lo, hi) = gpu_types::primitive_bounds(&scene).iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), b| (lo.min(b.0), hi.max(b.1)));
+        let own = scene.camera;
+        // Balls', mount's and the teapot's eye inside their bounds, some of
+        // them beside or behind it.
+        let inside = Camera { eye: own.eye.lerp((lo + hi) / 2.0, 0.6), ..own };
+        let from_above = Camera { eye: hi + Vec3::Y, look_at: lo, up: Vec3::X, projection: Projection::Orthographic { height: (hi - lo).length() } };
+        for camera in [own, inside, from_above] {
+            scene.camera = camera;
+            for (width, height) in [(512, 512), (100, 75)] {
+                let camera = gpu_types::scene_uniforms(&scene, width, height, 0, 0).camera;
+                let (fast, reference) = (footprints.bin(&camera, width, height), reference_bin(&footprints, &camera, width, height));
+                assert!(fast == reference, "{name} seen from {:?} at {width}x{height}", scene.camera);
+                binned += usize::from(fast.is_some());
+            }
+        }
+    }
+    assert!(binned >= 25, "only {binned} of 30 views were binned");
+}
+
+/// `scene`'s footprints as `Renderer::prepare` makes them.
+fn scene_footprints(scene: &Scene) -> Footprints {
+    let scene = polygon_split::split_large_polygons(scene);
+    let bounds = gpu_types::primitive_bounds(&scene);
+    let bvh = Bvh::build(&bounds);
+    let packed = gpu_types::pack(&scene, &bvh.order, GpuBvh::encode(&bvh).unwrap());
+    Footprints::new(&packed, &bvh.order.iter().map(|&i| bounds[i as usize]).collect::<Vec<_>>())
+}
+
+/// The lists as binning first made them, to check the fast binning against:
+/// every tile of each primitive's rectangle tested against every edge of its
+/// outline, and each tile's list sorted on its own.
+fn reference_bin(footprints: &Footprints, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
+    let view = View::new(camera, width, height);
+    let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
+    let near: Vec<f32> = footprints.prims.iter().map(|f| view.near(f)).collect();
+    let mut lists = vec![Vec::new(); across * down];
+    let mut outline = Outline::default();
+    for (i, f) in footprints.prims.iter().enumerate() {
+        let tiles: Vec<usize> = match view.reach(&footprints.points[f.points.clone()], across, down, &mut outline.projected) {
+            Reach::Nowhere => Vec::new(),
+            Reach::Everywhere => (0..across * down).collect(),
+            Reach::Within { columns, rows, margin } => {
+                let edges = outline.hull().then_some(&outline.edges);
+                let tiles = rows.flat_map(|y| columns.clone().map(move |x| (x, y)));
+                tiles.filter(|&(x, y)| edges.is_none_or(|edges| !beyond_an_edge(edges, tile_centres(x, y), margin))).map(|(x, y)| y * across + x).collect()
+            }
+        };
+        for tile in tiles {
+            lists[tile].push(i as u32);
+        }
+    }
+    if lists.iter().map(Vec::len).sum::<usize>() > MAX_MEAN_ENTRIES * lists.len() {
+        return None;
+    }
+    let mut words = Vec::new();
+    let mut first = 2 * lists.len();
+    for list in &mut lists {
+        list.sort_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]).then(a.cmp(&b)));
+        words.extend([first as u32, list.len() as u32]);
+        first += 2 * list.len();
+    }
+    for list in &lists {
+        words.extend(list);
+        words.extend(list.iter().map(|&i| near[i as usize].to_bits()));
+    }
+    Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
+}
+
+/// Tile `(x, y)`'s first and last pixel centres, `[x0, y0, x1, y1]`.
+fn tile_centres(x: usize, y: usize) -> [f64; 4] {
+    let (w, h) = (f64::from(EYE_TILE_WIDTH), f64::from(EYE_TILE_HEIGHT));
+    [x as f64 * w + 0.5, y as f64 * h + 0.5, x as f64 * w + w - 0.5, y as f64 * h + h - 0.5]
+}
+
+/// Whether every point of the rectangle `[x0, y0, x1, y1]` lies farther than
+/// `margin` outside one of `edges`.
+fn beyond_an_edge(edges: &[Edge], [x0, y0, x1, y1]: [f64; 4], margin: f64) -> bool {
+    edges.iter().any(|&(a, n)| {
+        let nearest = [if n[0] > 0.0 { x0 } else { x1 }, if n[1] > 0.0 { y0 } else { y1 }];
+        (nearest[0] - a[0]) * n[0] + (nearest[1] - a[1]) * n[1] > margin
+    })
+}
