@@ -129,12 +129,13 @@ async function main() {
     results.shown = s.scene;
 
     // A shared link: scene, camera and samples per pixel in the fragment, in
-    // a page of its own, smaller, so that its samples come sooner.
+    // a page of its own, smaller, so that its samples come sooner: in about
+    // 3 s each here, where they once took minutes (docs/performance.md).
     const linked = await open({ width: 640, height: 400 });
     await linked.goto(`${url}#${link}`, { timeout: 60_000 });
     const first = await until("first image of the link", (t) => t.samples >= 1, 600, linked);
     const sampled = Date.now();
-    s = await until("all samples of the link", (t) => t.converged && t.samples >= first.target_samples, 900, linked);
+    s = await until("all samples of the link", (t) => t.converged && t.samples >= first.target_samples, 300, linked);
     results.link = {
       link: s.link,
       errors: s.errors,
