@@ -171,6 +171,7 @@ pub enum Completions {
 }
 
 impl Completions {
+    /// How a device of `backend` reports finished work.
     pub fn of(backend: wgpu::Backend) -> Self {
         if backend == wgpu::Backend::BrowserWebGpu { Completions::Delivered } else { Completions::Polled }
     }
