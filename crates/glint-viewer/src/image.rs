@@ -243,8 +243,11 @@ impl TracedImage {
         let Some(options) = self.canvas.as_ref().map(|c| settings.trace_options(c)) else { return };
         let target = settings.target_samples();
         let Some(canvas) = self.canvas.as_mut() else { return };
+        // A finished band asks for one frame. egui answers a request without
+        // delay with two, and in a browser each frame is a paint that the
+        // device queues before the next band.
         let wake = ctx.clone();
-        let step = match self.acc.step(canvas, &options, target, move || wake.request_repaint()) {
+        let step = match self.acc.step(canvas, &options, target, move || wake.request_repaint_after(Duration::from_millis(1))) {
             Ok(step) => step,
             Err(e) => {
                 *error = Some(one_line(e));
