@@ -1,16 +1,16 @@
 // Measures Glint's page in headless Chromium (SwiftShader's WebGPU): for each
 // scene, the first image's time from page load (the kernels' compile
-// included) and the frame time and samples 30 s later, while 16 samples
-// accumulate, as the page's bar shows them. Serve the page first (web/serve.sh), then:
+// included), then over the next 60 s the frame time and the samples per
+// second while up to 64 accumulate, as the page's bar shows them. Serve the page first (web/serve.sh), then:
 //   GLINT_PLAYWRIGHT=target/web-test/node/node_modules/playwright-core \
 //     node web/measure.cjs http://127.0.0.1:8080/ showcase.toml whitted1980.toml
-const { chromium } = require(process.env.GLINT_PLAYWRIGHT);
+const { chromium } = require(require("path").resolve(process.env.GLINT_PLAYWRIGHT));
 
 const [url, ...scenes] = process.argv.slice(2);
 
 async function measure(browser, scene) {
   const page = await browser.newPage({ viewport: { width: 960, height: 600 } });
-  await page.goto(`${url}#scene=${scene}&spp=16`);
+  await page.goto(`${url}#scene=${scene}&spp=64`);
   const deadline = Date.now() + 600_000;
   let s = {};
   while (Date.now() < deadline) {
@@ -19,10 +19,12 @@ async function measure(browser, scene) {
     if (s.first_image_ms) break;
     await page.waitForTimeout(500);
   }
-  await page.waitForTimeout(30_000);
+  const first = s;
+  await page.waitForTimeout(60_000);
   s = JSON.parse(await page.textContent("#glint-state"));
   await page.close();
-  return `${scene}: ${s.render_size?.join("x")}, first image ${(s.first_image_ms / 1000).toFixed(1)} s, ${s.frame_ms?.toFixed(0)} ms/frame, ${s.samples} spp 30 s later`;
+  const rate = (s.samples - first.samples) / 60;
+  return `${scene}: ${s.render_size?.join("x")}, first image ${(s.first_image_ms / 1000).toFixed(1)} s, ${s.frame_ms?.toFixed(0)} ms/frame, ${rate.toFixed(2)} samples/s`;
 }
 
 (async () => {

@@ -20,6 +20,8 @@ use web_time::Instant;
 
 /// Bands submitted but not finished; more would only queue up latency.
 const MAX_IN_FLIGHT: usize = 2;
+/// How often a frame waiting for the device polls it.
+const POLL_INTERVAL: Duration = Duration::from_millis(2);
 /// The window over which Mrays/s is averaged.
 const RATE_WINDOW: Duration = Duration::from_millis(1000);
 
@@ -159,6 +161,40 @@ pub enum Step {
     Waiting,
 }
 
+/// How the viewer learns that the device finished a band.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Completions {
+    /// At the next `Device::poll`, which a frame runs: natively.
+    Polled,
+    /// By themselves, from the browser's event loop (WebGPU).
+    Delivered,
+}
+
+impl Completions {
+    /// How a device of `backend` reports finished work.
+    pub fn of(backend: wgpu::Backend) -> Self {
+        if backend == wgpu::Backend::BrowserWebGpu { Completions::Delivered } else { Completions::Polled }
+    }
+
+    /// When a frame whose step did `step` asks for the next one (`None`: it
+    /// does not; a finished band wakes the viewer), `room` telling whether
+    /// another band may go in flight. Polled completions need frames to poll
+    /// for them. Delivered ones wake the viewer themselves, and a frame that
+    /// could only wait would cost a paint, which the device queues in front
+    /// of the next band: in a browser on a software rasteriser, where a paint
+    /// takes longer than a band, such frames kept the queue seconds deep and
+    /// a sample took minutes.
+    pub fn next_frame(self, step: Step, room: bool) -> Option<Duration> {
+        match (self, step) {
+            (_, Step::Done) => None,
+            (Completions::Polled, Step::Traced) => Some(Duration::ZERO),
+            (Completions::Polled, Step::Waiting) => Some(POLL_INTERVAL),
+            (Completions::Delivered, Step::Traced) => room.then_some(Duration::ZERO),
+            (Completions::Delivered, Step::Waiting) => None,
+        }
+    }
+}
+
 impl Accumulation {
     /// Nothing accumulated yet, in bands sized by `bands`.
     pub fn new(bands: BandScheduler) -> Self {
@@ -182,12 +218,18 @@ impl Accumulation {
         self.rows_left = None;
     }
 
-    /// Adds the next band of rows of the next sample, up to `target` samples.
-    pub fn step(&mut self, canvas: &Canvas, options: &RenderOptions, target: u32) -> Result<Step, GpuError> {
+    /// Another band may go in flight.
+    pub fn has_room(&self) -> bool {
+        self.in_flight.load(Ordering::Acquire) < MAX_IN_FLIGHT
+    }
+
+    /// Adds the next band of rows of the next sample, up to `target` samples;
+    /// `wake` is called when the band is done (see [`Completions`]).
+    pub fn step(&mut self, canvas: &Canvas, options: &RenderOptions, target: u32, wake: impl FnOnce() + Send + 'static) -> Result<Step, GpuError> {
         if self.samples >= target {
             return Ok(Step::Done);
         }
-        if self.in_flight.load(Ordering::Acquire) >= MAX_IN_FLIGHT {
+        if !self.has_room() {
             return Ok(Step::Waiting);
         }
         let (width, height) = canvas.size();
@@ -213,6 +255,8 @@ impl Accumulation {
             let started = t.last_done.map_or(submitted, |done| done.max(submitted));
             t.last = Some((count, now - started));
             t.last_done = Some(now);
+            drop(t);
+            wake();
         });
         self.next_row = if rows.end >= height { 0 } else { rows.end };
         let left = left - (rows.end - rows.start);
@@ -251,13 +295,50 @@ impl Accumulation {
 #[cfg(test)]
 mod tests {
     use std::path::Path;
+    use std::sync::atomic::{AtomicUsize, Ordering};
     use std::sync::Arc;
+    use std::time::Duration;
 
     use glint_encoding::gpu_types::View;
+    use glint_gpu::schedule::BandScheduler;
     use glint_gpu::shaders::{Kernel, ShaderSource};
-    use glint_gpu::Tuning;
+    use glint_gpu::{RenderOptions, Tuning};
 
-    use super::{Canvas, Kernels};
+    use super::{Accumulation, Canvas, Completions, Kernels, Step, POLL_INTERVAL};
+
+    #[test]
+    fn a_browser_frame_never_only_waits_for_the_device() {
+        let browser = Completions::of(wgpu::Backend::BrowserWebGpu);
+        assert_eq!(browser, Completions::Delivered);
+        assert_eq!(browser.next_frame(Step::Waiting, false), None, "the finished band wakes the viewer");
+        assert_eq!(browser.next_frame(Step::Traced, false), None, "both bands in flight: the next finished one wakes it");
+        assert_eq!(browser.next_frame(Step::Traced, true), Some(Duration::ZERO), "a second band can go in flight at once");
+        assert_eq!(browser.next_frame(Step::Done, true), None);
+        let native = Completions::of(wgpu::Backend::Vulkan);
+        assert_eq!(native.next_frame(Step::Waiting, false), Some(POLL_INTERVAL), "natively a frame polls for the band");
+        assert_eq!(native.next_frame(Step::Traced, false), Some(Duration::ZERO));
+        assert_eq!(native.next_frame(Step::Done, true), None);
+    }
+
+    #[test]
+    fn a_finished_band_wakes_the_viewer_and_makes_room() {
+        let gpu = glint_gpu::Gpu::new().expect("a device (a software one in CI)");
+        let kernels = Arc::new(Kernels::compile(&gpu.device, &gpu.queue, &ShaderSource::Embedded).unwrap());
+        let scene = glint_scene::load(Path::new("spd:tetra:1")).unwrap();
+        let canvas = Canvas::new(kernels, &scene, View::Shaded, (40, 30), 1).unwrap();
+        let mut acc = Accumulation::new(BandScheduler::new_canvas());
+        let woken = Arc::new(AtomicUsize::new(0));
+        let options = RenderOptions { view: View::Shaded, ..RenderOptions::default() };
+        // Each band is a whole sample of this small image.
+        for band in 1..=2 {
+            let wake = Arc::clone(&woken);
+            assert_eq!(acc.step(&canvas, &options, 2, move || { wake.fetch_add(1, Ordering::AcqRel); }).unwrap(), Step::Traced);
+            gpu.device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+            assert_eq!(woken.load(Ordering::Acquire), band, "each band, once done, wakes the viewer");
+            assert!(acc.has_room() && acc.samples == band as u32);
+        }
+        assert_eq!(acc.step(&canvas, &options, 2, || ()).unwrap(), Step::Done);
+    }
 
     #[test]
     fn the_warm_up_compiles_the_kernel_the_first_canvas_dispatches() {

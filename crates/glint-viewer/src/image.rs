@@ -17,7 +17,7 @@ use glint_scene::Camera;
 
 use crate::app::one_line;
 use crate::document::LoadedScene;
-use crate::engine::{Accumulation, Canvas, Kernels, Step};
+use crate::engine::{Accumulation, Canvas, Completions, Kernels, Step};
 use crate::jobs::{Job, Jobs};
 use crate::settings::Settings;
 
@@ -51,11 +51,13 @@ pub(crate) struct TracedImage {
     pub rect: Option<Rect>,
     wanted_size: Option<(u32, u32)>,
     pub frame_time: FrameTime,
+    completions: Completions,
 }
 
 impl TracedImage {
     pub fn new(device: wgpu::Device, egui_renderer: Arc<egui::mutex::RwLock<egui_wgpu::Renderer>>, max_side: u32) -> Self {
         Self {
+            completions: Completions::of(device.adapter_info().backend),
             device,
             egui_renderer,
             max_side,
@@ -241,7 +243,11 @@ impl TracedImage {
         let Some(options) = self.canvas.as_ref().map(|c| settings.trace_options(c)) else { return };
         let target = settings.target_samples();
         let Some(canvas) = self.canvas.as_mut() else { return };
-        let step = match self.acc.step(canvas, &options, target) {
+        // A finished band asks for one frame. egui answers a request without
+        // delay with two, and in a browser each frame is a paint that the
+        // device queues before the next band.
+        let wake = ctx.clone();
+        let step = match self.acc.step(canvas, &options, target, move || wake.request_repaint_after(Duration::from_millis(1))) {
             Ok(step) => step,
             Err(e) => {
                 *error = Some(one_line(e));
@@ -249,20 +255,18 @@ impl TracedImage {
             }
         };
         self.frame_time.rendering = step != Step::Done;
-        match step {
-            Step::Traced => {
-                // Progressive display shows every band: after a change the new
-                // image replaces the old one row by row, so the view stays live
-                // even when a whole sample takes several frames.
-                if settings.progressive || self.acc.samples >= target || !self.acc.presented {
-                    canvas.present(&options);
-                    self.acc.presented = true;
-                    self.represent = false;
-                }
-                ctx.request_repaint();
-            }
-            Step::Waiting => ctx.request_repaint_after(Duration::from_millis(2)),
-            Step::Done => {}
+        // Progressive display shows every band: after a change the new image
+        // replaces the old one row by row, so the view stays live even when a
+        // whole sample takes several frames.
+        if step == Step::Traced && (settings.progressive || self.acc.samples >= target || !self.acc.presented) {
+            canvas.present(&options);
+            self.acc.presented = true;
+            self.represent = false;
+        }
+        match self.completions.next_frame(step, self.acc.has_room()) {
+            Some(Duration::ZERO) => ctx.request_repaint(),
+            Some(after) => ctx.request_repaint_after(after),
+            None => {}
         }
         if std::mem::take(&mut self.represent) && self.acc.samples > 0 && (settings.progressive || self.acc.samples >= target) {
             canvas.present(&options);
