@@ -136,9 +136,14 @@ impl Footprints {
             let offset = heads.get(2 * tiles.start).map_or(0, |&first| first as usize);
             let mut next: Vec<usize> = tiles.clone().map(|tile| heads[2 * tile] as usize - offset).collect();
             for (prims, share) in order.chunks(SHARE).zip(&shares) {
-                let mut tiles_of = share.tiles.iter().map(|&tile| tile as usize);
+                let mut rest = &share.tiles[..];
                 for (&i, &run) in prims.iter().zip(&share.runs) {
-                    for tile in tiles_of.by_ref().take(run).filter(|tile| tiles.contains(tile)) {
+                    let own;
+                    (own, rest) = rest.split_at(run);
+                    // A primitive's tiles ascend, so those in this half are
+                    // one stretch of them, found without visiting the others.
+                    let stretch = own.partition_point(|&tile| (tile as usize) < tiles.start)..own.partition_point(|&tile| (tile as usize) < tiles.end);
+                    for tile in own[stretch].iter().map(|&tile| tile as usize) {
                         let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
                         lists[*slot] = i;
                         lists[*slot + count] = near[i as usize].to_bits();
