@@ -115,34 +115,35 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
 fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
     let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
     let mut prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
-    // Per-view host work, as the viewer does it at every camera move: the
-    // camera and lights written, the eye tiles binned.
-    let mut view_times = Vec::new();
-    for _ in 0..args.frames {
-        let start = Instant::now();
-        renderer.pose(&mut prepared, &scene)?;
-        renderer.rebin(&mut prepared, &scene);
-        view_times.push(start.elapsed());
-    }
-    view_times.sort();
-    let view_work = view_times[view_times.len() / 2];
     let scene_kernels = (prepared.buffers.specialization, prepared.buffers.tuning);
-    // Device time per frame: tracing only, no resolve or read-back.
-    let mut time = |view: View| -> Result<(Duration, RayStats), Failure> {
-        (prepared.buffers.specialization, prepared.buffers.tuning) = timed_kernels(scene_kernels, view, renderer.profile());
+    // Device time per frame: tracing only, no resolve or read-back. When the
+    // camera moves, each frame follows a view's host work as in the viewer:
+    // the camera and lights written, the eye tiles binned; the frame's
+    // submission takes the lists with it.
+    let mut time = |view: View, camera_moves: bool| -> Result<(Duration, Duration, RayStats), Failure> {
         let options = RenderOptions { view, ..RenderOptions::default() };
-        let mut stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
-        let mut times = Vec::new();
-        for _ in 0..args.frames {
+        let mut stats = RayStats::default();
+        let (mut times, mut view_times) = (Vec::new(), Vec::new());
+        for frame in 0..=args.frames {
             let start = Instant::now();
+            if camera_moves {
+                (prepared.buffers.specialization, prepared.buffers.tuning) = scene_kernels;
+                prepared.buffers.forget_view();
+                renderer.pose(&mut prepared, &scene)?;
+            }
+            let view_time = start.elapsed();
+            (prepared.buffers.specialization, prepared.buffers.tuning) = timed_kernels(scene_kernels, view, renderer.profile());
             stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
-            times.push(start.elapsed());
+            // The first frame warms up.
+            if frame > 0 {
+                times.push(start.elapsed());
+                view_times.push(view_time);
+            }
         }
-        times.sort();
-        Ok((times[times.len() / 2], stats))
+        Ok((median(times), median(view_times), stats))
     };
-    let (primary, _) = time(View::Depth)?;
-    let (whitted, stats) = time(View::Shaded)?;
+    let (primary, view_work, _) = time(View::Depth, true)?;
+    let (whitted, _, stats) = time(View::Shaded, false)?;
     let heat_options = RenderOptions { view: View::Heatmap, ..RenderOptions::default() };
     let (heat, _) = renderer.render(&prepared.buffers, &heat_options, &mut |_, _| {})?;
     let nodes_per_primary_ray = heat.linear.iter().map(|p| f64::from(p[0])).sum::<f64>() / heat.linear.len() as f64;
@@ -154,7 +155,7 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         eye_tiles_build,
         bvh_nodes,
         gpu_bytes: buffers.scene_bytes,
-        primary: primary + view_work,
+        primary,
         view_work,
         whitted,
         stats,
@@ -169,6 +170,11 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
 fn timed_kernels(scene_kernels: (Specialization, Tuning), view: View, profile: &DeviceProfile) -> (Specialization, Tuning) {
     let (specialization, tuning) = scene_kernels;
     (specialization.for_views(&[view]), Tuning { packets: profile.packets_for(u64::MAX), ..tuning })
+}
+
+fn median(mut times: Vec<Duration>) -> Duration {
+    times.sort();
+    times[times.len() / 2]
 }
 
 fn mrays(rays: u64, time: Duration) -> f64 {

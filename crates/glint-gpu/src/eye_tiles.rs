@@ -92,6 +92,13 @@ impl SceneBuffers {
     pub(crate) fn aim_eye_tiles(&mut self, camera: &GpuCamera) {
         self.tuning.eye_tiles = self.eye_tiles.camera.as_ref() == Some(camera);
     }
+
+    /// Leaves the lists as a camera move does, built for no view, so that the
+    /// next `Renderer::pose` bins them again: how `glint bench` times a move.
+    pub fn forget_view(&mut self) {
+        self.eye_tiles.camera = None;
+        self.tuning.eye_tiles = false;
+    }
 }
 
 /// Whether a dispatch over `region` hands each SIMD group blocks of one tile:

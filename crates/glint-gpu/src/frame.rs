@@ -107,17 +107,6 @@ impl Renderer {
         })
     }
 
-    /// Bins `scene`'s view into eye tiles again, when the scene has them, as
-    /// `pose` does after a camera move: the per-view host work `glint bench`
-    /// counts into a primary frame.
-    pub fn rebin(&self, prepared: &mut Prepared, scene: &Scene) {
-        if prepared.eye_tiles_build.is_some() {
-            let buffers = &mut prepared.buffers;
-            let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.bvh_root());
-            self.bin_eye_tiles(buffers, &prepared.footprints, &uniforms.camera);
-        }
-    }
-
     /// Gives a prepared scene the camera and lights of `scene`, the same scene
     /// posed at another frame (`Scene::set_frame`): only the lights, the
     /// uniforms and the eye tiles (which are the view's) are written, and the

@@ -99,22 +99,26 @@ impl Footprints {
         let view = View::new(camera, width, height);
         let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
         let tiles = across * down;
-        // Binned nearest first, so every tile's entries come out in that order.
         let near: Vec<f32> = self.prims.par_iter().with_min_len(SHARE).map(|f| view.near(f)).collect();
-        let order = nearest_first(&near);
-        // Each share of that order covered on whichever core is free.
-        let shares: Vec<Covered> = order
-            .par_chunks(SHARE)
-            .map(|prims| {
-                let mut covered = Covered { tiles: Vec::new(), runs: Vec::with_capacity(prims.len()), outline: Outline::default() };
-                for &i in prims {
-                    let start = covered.tiles.len();
-                    view.cover(&self.points[self.prims[i as usize].points.clone()], across, down, &mut covered.outline, &mut covered.tiles);
-                    covered.runs.push(covered.tiles.len() - start);
-                }
-                covered
-            })
-            .collect();
+        // Covered in the BVH's order, whose neighbours lie near in memory, a
+        // share on whichever core is free.
+        let (order, shares): (Vec<u32>, Vec<Covered>) = rayon::join(
+            || nearest_first(&near),
+            || {
+                self.prims
+                    .par_chunks(SHARE)
+                    .map(|prims| {
+                        let mut covered = Covered { tiles: Vec::new(), starts: Vec::with_capacity(prims.len() + 1), outline: Outline::default() };
+                        covered.starts.push(0);
+                        for prim in prims {
+                            view.cover(&self.points[prim.points.clone()], across, down, &mut covered.outline, &mut covered.tiles);
+                            covered.starts.push(covered.tiles.len());
+                        }
+                        covered
+                    })
+                    .collect()
+            },
+        );
         let entries = shares.iter().map(|share| share.tiles.len()).sum::<usize>();
         if entries > MAX_MEAN_ENTRIES * tiles || 2 * tiles + 2 * entries > u32::MAX as usize {
             return None;
@@ -135,15 +139,19 @@ impl Footprints {
         let fill = |tiles: Range<usize>, lists: &mut [u32]| {
             let offset = heads.get(2 * tiles.start).map_or(0, |&first| first as usize);
             let mut next: Vec<usize> = tiles.clone().map(|tile| heads[2 * tile] as usize - offset).collect();
-            for (prims, share) in order.chunks(SHARE).zip(&shares) {
-                let mut tiles_of = share.tiles.iter().map(|&tile| tile as usize);
-                for (&i, &run) in prims.iter().zip(&share.runs) {
-                    for tile in tiles_of.by_ref().take(run).filter(|tile| tiles.contains(tile)) {
-                        let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
-                        lists[*slot] = i;
-                        lists[*slot + count] = near[i as usize].to_bits();
-                        *slot += 1;
-                    }
+            // Binned nearest first, so every tile's entries come out in that order.
+            for &i in &order {
+                let share = &shares[i as usize / SHARE];
+                let k = i as usize % SHARE;
+                let own = &share.tiles[share.starts[k]..share.starts[k + 1]];
+                // A primitive's tiles ascend, so those in this half are one
+                // stretch of them, found without visiting the others.
+                let stretch = own.partition_point(|&tile| (tile as usize) < tiles.start)..own.partition_point(|&tile| (tile as usize) < tiles.end);
+                for tile in own[stretch].iter().map(|&tile| tile as usize) {
+                    let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
+                    lists[*slot] = i;
+                    lists[*slot + count] = near[i as usize].to_bits();
+                    *slot += 1;
                 }
             }
         };
@@ -154,11 +162,11 @@ impl Footprints {
     }
 }
 
-/// Some primitives' tiles, one run of `tiles` each, with the room their
-/// outlines took.
+/// A share of the primitives' tiles: the k-th one's are
+/// `tiles[starts[k]..starts[k + 1]]`. With the room their outlines took.
 struct Covered {
     tiles: Vec<u32>,
-    runs: Vec<usize>,
+    starts: Vec<usize>,
     outline: Outline,
 }
 
