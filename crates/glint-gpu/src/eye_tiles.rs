@@ -52,8 +52,7 @@ impl Renderer {
         let tiles = self.profile.eye_tiles.then(|| footprints.bin(camera, scene.width, scene.height)).flatten();
         let limit = self.device.limits().max_storage_buffer_binding_size;
         let Some(tiles) = tiles.filter(|t| (t.words.len() as u64) * 4 <= limit) else {
-            scene.eye_tiles.camera = None;
-            scene.tuning.eye_tiles = false;
+            scene.forget_view();
             return false;
         };
         let bytes: &[u8] = bytemuck::cast_slice(&tiles.words);
@@ -93,8 +92,8 @@ impl SceneBuffers {
         self.tuning.eye_tiles = self.eye_tiles.camera.as_ref() == Some(camera);
     }
 
-    /// Leaves the lists as a camera move does, built for no view, so that the
-    /// next `Renderer::pose` bins them again: how `glint bench` times a move.
+    /// Leaves the lists built for no view, as a camera move does, so that the
+    /// next `Renderer::pose` bins them again (and `glint bench` times a move).
     pub fn forget_view(&mut self) {
         self.eye_tiles.camera = None;
         self.tuning.eye_tiles = false;
