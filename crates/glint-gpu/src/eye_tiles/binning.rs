@@ -16,6 +16,7 @@
 //! it can be nearer than, with room for rounding, and a tile's entries are in
 //! order of it.
 
+use std::collections::HashMap;
 use std::ops::Range;
 
 use glam::Vec3;
@@ -45,10 +46,13 @@ const NEAR_SLACK: f32 = 0.01;
 /// What the host keeps of the BVH's primitives, in the kernels' order, to bin
 /// them for any view: each one's bounds, and the points whose projections
 /// bound its own: a triangle's or polygon's vertices (tighter than its box's
-/// corners), else its box's corners.
+/// corners), else its box's corners. Each point is kept once, so that a
+/// vertex that neighbours share is projected once a view.
 #[derive(Debug, Clone, Default)]
 pub struct Footprints {
     prims: Vec<Footprint>,
+    /// Each footprint's points, as indices into `points`.
+    corners: Vec<u32>,
     points: Vec<Vec3>,
 }
 
@@ -56,7 +60,7 @@ pub struct Footprints {
 struct Footprint {
     lo: Vec3,
     hi: Vec3,
-    points: Range<usize>,
+    corners: Range<usize>,
 }
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
@@ -75,21 +79,28 @@ impl Footprints {
     /// `bounds`, the bounds of those BVH primitives in the same order.
     pub fn new(scene: &GpuScene, bounds: &[(Vec3, Vec3)]) -> Footprints {
         let vertex = |v: &[f32; 4]| Vec3::new(v[0], v[1], v[2]);
-        let mut points = Vec::new();
+        let (mut points, mut corners, mut index) = (Vec::new(), Vec::new(), HashMap::new());
         let prims = bounds
             .iter()
             .zip(&scene.prims)
             .map(|(&(lo, hi), p)| {
-                let first = points.len();
+                let first = corners.len();
+                let mut add = |point: Vec3| {
+                    let i = *index.entry(point.to_array().map(f32::to_bits)).or_insert_with(|| {
+                        points.push(point);
+                        points.len() as u32 - 1
+                    });
+                    corners.push(i);
+                };
                 match p.kind() {
-                    PRIM_TRIANGLE => points.extend([&p.a, &p.b, &p.c].map(vertex)),
-                    PRIM_POLYGON => points.extend(scene.points[p.first as usize..(p.first + p.count) as usize].iter().map(vertex)),
-                    _ => points.extend(corners(lo, hi)),
+                    PRIM_TRIANGLE => [&p.a, &p.b, &p.c].map(vertex).into_iter().for_each(&mut add),
+                    PRIM_POLYGON => scene.points[p.first as usize..(p.first + p.count) as usize].iter().map(vertex).for_each(&mut add),
+                    _ => self::corners(lo, hi).into_iter().for_each(&mut add),
                 }
-                Footprint { lo, hi, points: first..points.len() }
+                Footprint { lo, hi, corners: first..corners.len() }
             })
             .collect();
-        Footprints { prims, points }
+        Footprints { prims, corners, points }
     }
 
     /// The lists for `camera` at `width` × `height`, or `None` when they would
@@ -99,7 +110,10 @@ impl Footprints {
         let view = View::new(camera, width, height);
         let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
         let tiles = across * down;
+        // The lists are filled in two halves of the tiles, each on a core.
+        let middle = tiles / 2;
         let near: Vec<f32> = self.prims.par_iter().with_min_len(SHARE).map(|f| view.near(f)).collect();
+        let projections = view.project_all(&self.points);
         // Covered in the BVH's order, whose neighbours lie near in memory, a
         // share on whichever core is free.
         let (order, shares): (Vec<u32>, Vec<Covered>) = rayon::join(
@@ -108,10 +122,13 @@ impl Footprints {
                 self.prims
                     .par_chunks(SHARE)
                     .map(|prims| {
-                        let mut covered = Covered { tiles: Vec::new(), starts: Vec::with_capacity(prims.len() + 1), outline: Outline::default() };
+                        let mut covered = Covered { tiles: Vec::new(), starts: Vec::with_capacity(2 * prims.len() + 1), outline: Outline::default() };
                         covered.starts.push(0);
                         for prim in prims {
-                            view.cover(&self.points[prim.points.clone()], across, down, &mut covered.outline, &mut covered.tiles);
+                            let start = covered.tiles.len();
+                            view.cover(&self.corners[prim.corners.clone()], &projections, across, down, &mut covered.outline, &mut covered.tiles);
+                            // A primitive's tiles ascend, so those in each half are one stretch.
+                            covered.starts.push(start + covered.tiles[start..].partition_point(|&tile| (tile as usize) < middle));
                             covered.starts.push(covered.tiles.len());
                         }
                         covered
@@ -134,20 +151,15 @@ impl Footprints {
             head.copy_from_slice(&[first, count]);
             first += 2 * count;
         }
-        // The entries of the first half of the tiles, then the second's: each
-        // half filled on a core of its own.
-        let fill = |tiles: Range<usize>, lists: &mut [u32]| {
+        // The entries of the first half of the tiles, then the second's.
+        let fill = |half: usize, tiles: Range<usize>, lists: &mut [u32]| {
             let offset = heads.get(2 * tiles.start).map_or(0, |&first| first as usize);
             let mut next: Vec<usize> = tiles.clone().map(|tile| heads[2 * tile] as usize - offset).collect();
             // Binned nearest first, so every tile's entries come out in that order.
             for &i in &order {
                 let share = &shares[i as usize / SHARE];
-                let k = i as usize % SHARE;
-                let own = &share.tiles[share.starts[k]..share.starts[k + 1]];
-                // A primitive's tiles ascend, so those in this half are one
-                // stretch of them, found without visiting the others.
-                let stretch = own.partition_point(|&tile| (tile as usize) < tiles.start)..own.partition_point(|&tile| (tile as usize) < tiles.end);
-                for tile in own[stretch].iter().map(|&tile| tile as usize) {
+                let k = 2 * (i as usize % SHARE) + half;
+                for tile in share.tiles[share.starts[k]..share.starts[k + 1]].iter().map(|&tile| tile as usize) {
                     let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
                     lists[*slot] = i;
                     lists[*slot + count] = near[i as usize].to_bits();
@@ -155,15 +167,15 @@ impl Footprints {
                 }
             }
         };
-        let middle = tiles / 2;
         let (low, high) = lists.split_at_mut(heads[2 * middle] as usize - 2 * tiles);
-        rayon::join(|| fill(0..middle, low), || fill(middle..tiles, high));
+        rayon::join(|| fill(0, 0..middle, low), || fill(1, middle..tiles, high));
         Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
     }
 }
 
 /// A share of the primitives' tiles: the k-th one's are
-/// `tiles[starts[k]..starts[k + 1]]`. With the room their outlines took.
+/// `tiles[starts[2k]..starts[2k + 2]]`, those in the first half of the image's
+/// tiles up to `starts[2k + 1]`. With the room their outlines took.
 struct Covered {
     tiles: Vec<u32>,
     starts: Vec<usize>,
@@ -250,62 +262,84 @@ impl View {
     /// hit what `points` bound, row by row: those its projection's bounding
     /// rectangle reaches, less those wholly beyond one of the edges of its
     /// convex hull.
-    fn cover(&self, points: &[Vec3], across: usize, down: usize, outline: &mut Outline, covered: &mut Vec<u32>) {
-        match self.reach(points, across, down, &mut outline.projected) {
+    fn cover(&self, corners: &[u32], projections: &Projections, across: usize, down: usize, outline: &mut Outline, covered: &mut Vec<u32>) {
+        match self.reach(corners, projections, across, down, &mut outline.projected) {
             Reach::Nowhere => {}
             Reach::Everywhere => covered.extend(0..(across * down) as u32),
             Reach::Within { columns, rows, margin } => {
-                if !outline.hull() {
-                    outline.edges.clear();
-                }
-                let Outline { edges, row_terms, .. } = outline;
-                // An edge takes tiles from the rectangle only if its corner
-                // tile farthest out lies beyond it: the distance of a tile's
-                // nearest pixel centre beyond an edge grows (or shrinks) along
-                // the rectangle's rows and columns, rounding included.
-                edges.retain(|edge| {
-                    let outmost = |n: f64, tiles: &Range<usize>| if n > 0.0 { tiles.end - 1 } else { tiles.start };
-                    column_term(edge, outmost(edge.1[0], &columns)) + row_term(edge, outmost(edge.1[1], &rows)) > margin
-                });
+                outline.cut(&columns, &rows, margin);
+                let edges = &outline.edges;
                 if edges.is_empty() {
                     return covered.extend(rows.flat_map(|y| (y * across + columns.start) as u32..(y * across + columns.end) as u32));
                 }
+                // Along a row, the tiles beyond an edge whose normal points
+                // left lead it, those beyond one pointing right trail it, and
+                // an edge along the row takes all or none (as in
+                // `Outline::cut`): the rest are one run, from the first tile
+                // not beyond a leading edge to the last not beyond a trailing one.
                 for y in rows {
-                    row_terms.clear();
-                    row_terms.extend(edges.iter().map(|edge| row_term(edge, y)));
-                    let beyond = |x: usize| edges.iter().zip(row_terms.iter()).any(|(edge, &row)| column_term(edge, x) + row > margin);
-                    // So along a row, the tiles beyond an edge lead or trail
-                    // it, and the rest are one run.
-                    let Some(first) = columns.clone().find(|&x| !beyond(x)) else { continue };
-                    let last = (first + 1..columns.end).rev().find(|&x| !beyond(x)).unwrap_or(first);
-                    covered.extend((y * across + first) as u32..=(y * across + last) as u32);
+                    let (mut first, mut end) = (columns.start, columns.end);
+                    for edge in edges {
+                        let row = row_term(edge, y);
+                        let beyond = |x: usize| column_term(edge, x) + row > margin;
+                        if edge.1[0] > 0.0 {
+                            while end > first && beyond(end - 1) {
+                                end -= 1;
+                            }
+                        } else if edge.1[0] < 0.0 {
+                            while first < end && beyond(first) {
+                                first += 1;
+                            }
+                        } else if beyond(first) {
+                            end = first;
+                        }
+                        if first == end {
+                            break;
+                        }
+                    }
+                    covered.extend((y * across + first) as u32..(y * across + end) as u32);
                 }
             }
         }
     }
 
-    /// Which tiles' eye rays may hit what `points` bound, leaving their
-    /// projections in `projected`: none when all of it is behind the eye,
-    /// where no eye ray goes.
-    fn reach(&self, points: &[Vec3], across: usize, down: usize, projected: &mut Vec<[f32; 2]>) -> Reach {
+    /// Where each of `points` projects, and whether it lies in front of the
+    /// eye, on every core.
+    fn project_all(&self, points: &[Vec3]) -> Projections {
+        let (mut at, mut in_front) = (vec![[0.0; 2]; points.len()], vec![false; points.len()]);
+        let shares = at.par_chunks_mut(SHARE).zip(in_front.par_chunks_mut(SHARE)).zip(points.par_chunks(SHARE));
+        shares.for_each(|((at, in_front), points)| {
+            for ((at, in_front), &p) in at.iter_mut().zip(in_front).zip(points) {
+                let q = p - self.eye;
+                let depth = q.dot(-self.w);
+                *in_front = depth > 1e-6 * q.length();
+                // A point beside or behind the eye projects to no point of
+                // the image, unless the rays are parallel.
+                *at = if *in_front || self.orthographic { self.project(q, depth) } else { [f32::NAN; 2] };
+            }
+        });
+        (at, in_front)
+    }
+
+    /// Which tiles' eye rays may hit what the points `corners` bound, leaving
+    /// their projections in `projected`: none when all of it is behind the
+    /// eye, where no eye ray goes.
+    fn reach(&self, corners: &[u32], (at, in_front): &Projections, across: usize, down: usize, projected: &mut Vec<[f32; 2]>) -> Reach {
         projected.clear();
-        let mut in_front = 0;
-        for &p in points {
-            let q = p - self.eye;
-            let depth = q.dot(-self.w);
-            if depth > 1e-6 * q.length() {
-                in_front += 1;
-                projected.push(self.project(q, depth));
-            } else if self.orthographic {
-                projected.push(self.project(q, depth));
+        let mut ahead = 0;
+        for &i in corners {
+            let i = i as usize;
+            ahead += usize::from(in_front[i]);
+            if in_front[i] || self.orthographic {
+                projected.push(at[i]);
             }
         }
-        if in_front == 0 {
+        if ahead == 0 {
             return Reach::Nowhere;
         }
         // A point beside or behind the eye projects to no point of the image:
         // the primitive may then cross any eye ray.
-        if in_front < points.len() && !self.orthographic {
+        if ahead < corners.len() && !self.orthographic {
             return Reach::Everywhere;
         }
         let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
@@ -341,6 +375,10 @@ impl View {
     }
 }
 
+/// Where on the image each point projects, and whether it lies in front of
+/// the eye.
+type Projections = (Vec<[f32; 2]>, Vec<bool>);
+
 /// The tiles a footprint's projection may reach: a rectangle of them, each
 /// grown by `margin` pixels for rounding.
 enum Reach {
@@ -360,73 +398,176 @@ struct Outline {
     sorted: Vec<[f64; 2]>,
     hull: Vec<[f64; 2]>,
     edges: Vec<Edge>,
-    /// Each edge's term from a row of tiles.
-    row_terms: Vec<f64>,
 }
 
 impl Outline {
-    /// Makes `edges` those of the convex hull of `projected` (Andrew's
-    /// monotone chain), their normals pointing out of it. False when the hull
-    /// has no inside.
+    /// Makes `edges` those edges of the convex hull of `projected` that take
+    /// tiles from the rectangle of `columns` × `rows`, their normals pointing
+    /// out of it; none when the hull has no inside.
+    ///
+    /// An edge takes tiles only if the rectangle's corner tile farthest out
+    /// lies beyond it: the distance of a tile's nearest pixel centre beyond an
+    /// edge grows (or shrinks) along the rectangle's rows and columns, rounding
+    /// included. An edge whose unscaled distance to that tile is not positive
+    /// is let go before its normal is scaled: scaled, rounding could move it
+    /// by far less than `margin`.
+    fn cut(&mut self, columns: &Range<usize>, rows: &Range<usize>, margin: f64) {
+        self.edges.clear();
+        if !self.hull() {
+            return;
+        }
+        let Outline { hull, edges, .. } = self;
+        let n = hull.len();
+        let outmost = |outward: bool, tiles: &Range<usize>| if outward { tiles.end - 1 } else { tiles.start };
+        for i in 0..n {
+            let (a, b) = (hull[i], hull[if i + 1 == n { 0 } else { i + 1 }]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let (x, y) = (outmost(dy > 0.0, columns), outmost(-dx > 0.0, rows));
+            if (nearest_centre(x, EYE_TILE_WIDTH, dy) - a[0]) * dy - (nearest_centre(y, EYE_TILE_HEIGHT, -dx) - a[1]) * dx <= 0.0 {
+                continue;
+            }
+            let edge = edge(a, b);
+            if column_term(&edge, x) + row_term(&edge, y) > margin {
+                edges.push(edge);
+            }
+        }
+    }
+
+    /// Makes `hull` the convex hull of `projected`, counter-clockwise from its
+    /// lowest point in x, then y, as Andrew's monotone chain leaves it. False
+    /// when the hull has no inside.
     fn hull(&mut self) -> bool {
-        let Outline { projected, sorted: points, hull, edges, .. } = self;
+        let Outline { projected, sorted: points, hull, .. } = self;
         points.clear();
         points.extend(projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]));
-        // By x, then y: an insertion sort, as there are few.
-        for k in 1..points.len() {
-            let p = points[k];
-            let mut j = k;
-            while j > 0 && (points[j - 1][0].total_cmp(&p[0]).then(points[j - 1][1].total_cmp(&p[1]))).is_gt() {
-                points[j] = points[j - 1];
-                j -= 1;
-            }
-            points[j] = p;
+        if !convex_in_order(points, hull) {
+            monotone_chain(points, hull);
         }
-        let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-        hull.clear();
-        // The lower hull left to right, then the upper one back.
-        for backwards in [false, true] {
-            let start = hull.len();
-            for k in 0..points.len() {
-                let p = points[if backwards { points.len() - 1 - k } else { k }];
-                while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
-                    hull.pop();
-                }
-                hull.push(p);
-            }
-            hull.pop();
-        }
-        let n = hull.len();
-        let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
-        let area: f64 = (0..n).map(|i| hull[i][0] * hull[next(i)][1] - hull[next(i)][0] * hull[i][1]).sum();
-        if n < 3 || area < 1e-6 {
-            return false;
-        }
-        // Counter-clockwise: outward is to the right of each edge.
-        edges.clear();
-        edges.extend((0..n).map(|i| {
-            let (a, b) = (hull[i], hull[next(i)]);
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let length = (dx * dx + dy * dy).sqrt();
-            (a, [dy / length, -dx / length])
-        }));
-        true
+        has_inside(hull)
     }
+}
+
+/// The line through `a` and `b`, with its normal to the right of a to b.
+fn edge(a: [f64; 2], b: [f64; 2]) -> Edge {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length = (dx * dx + dy * dy).sqrt();
+    (a, [dy / length, -dx / length])
+}
+
+/// Twice the signed area of the triangle `o`, `a`, `b`: positive when it
+/// turns counter-clockwise, as the hull's corners do.
+fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+}
+
+/// Whether a counter-clockwise `hull` encloses an area.
+fn has_inside(hull: &[[f64; 2]]) -> bool {
+    let n = hull.len();
+    let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    let area: f64 = (0..n).map(|i| hull[i][0] * hull[next(i)][1] - hull[next(i)][0] * hull[i][1]).sum();
+    n >= 3 && area >= 1e-6
+}
+
+/// Andrew's monotone chain: makes `hull` the convex hull of `points`,
+/// sorting them.
+fn monotone_chain(points: &mut [[f64; 2]], hull: &mut Vec<[f64; 2]>) {
+    // By x, then y: an insertion sort, as there are few.
+    for k in 1..points.len() {
+        let p = points[k];
+        let mut j = k;
+        while j > 0 && lowest_first(points[j - 1], p).is_gt() {
+            points[j] = points[j - 1];
+            j -= 1;
+        }
+        points[j] = p;
+    }
+    hull.clear();
+    // The lower hull left to right, then the upper one back.
+    for backwards in [false, true] {
+        let start = hull.len();
+        for k in 0..points.len() {
+            let p = points[if backwards { points.len() - 1 - k } else { k }];
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+}
+
+/// The order of the monotone chain's sort: by x, then y.
+fn lowest_first(a: [f64; 2], b: [f64; 2]) -> std::cmp::Ordering {
+    a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1]))
+}
+
+/// Makes `hull` the monotone chain's hull of `points` without sorting them,
+/// when they are the corners of a convex polygon in order (as a convex
+/// polygon's, or a triangle's, project): then the hull is all of them, turned
+/// counter-clockwise and started at the lowest. False, leaving `hull` to the
+/// chain, unless every corner turns the same way, clearly beyond rounding,
+/// and the outline goes round once.
+fn convex_in_order(points: &[[f64; 2]], hull: &mut Vec<[f64; 2]>) -> bool {
+    let n = points.len();
+    if n < 3 {
+        return false;
+    }
+    let scale = points.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
+    let clear = CLEAR_TURN * scale * scale;
+    let (mut left, mut right) = (true, true);
+    // Turning one way at every corner, an outline that goes round more than
+    // once (a star) turns back in x more than twice.
+    let (mut reversals, mut first_dx, mut last_dx) = (0, 0.0, 0.0);
+    let (mut before, mut corner) = (points[n - 2], points[n - 1]);
+    for &after in points {
+        let turn = cross(before, corner, after);
+        (left, right) = (left && turn > clear, right && turn < -clear);
+        let dx = after[0] - corner[0];
+        if dx != 0.0 {
+            reversals += usize::from(last_dx * dx < 0.0);
+            (first_dx, last_dx) = (if first_dx == 0.0 { dx } else { first_dx }, dx);
+        }
+        (before, corner) = (corner, after);
+    }
+    reversals += usize::from(last_dx * first_dx < 0.0);
+    if !(left || right) || reversals != 2 {
+        return false;
+    }
+    let lowest = (0..n).min_by(|&i, &j| lowest_first(points[i], points[j])).unwrap_or(0);
+    hull.clear();
+    if left {
+        hull.extend_from_slice(&points[lowest..]);
+        hull.extend_from_slice(&points[..lowest]);
+    } else {
+        hull.extend(points[..=lowest].iter().rev());
+        hull.extend(points[lowest + 1..].iter().rev());
+    }
+    true
+}
+
+/// How clearly, as a share of the square of the largest coordinate, a corner
+/// must turn for [`convex_in_order`] to trust its turn: far beyond the rounding
+/// of `cross`, so that the chain would find every turn as it does.
+const CLEAR_TURN: f64 = 1e-9;
+
+/// The pixel centre of tile `t` (`side` pixels) nearest the side a normal
+/// component `toward` faces away from: the first when it is positive.
+fn nearest_centre(t: usize, side: u32, toward: f64) -> f64 {
+    let t0 = f64::from(t as u32 * side);
+    if toward > 0.0 { t0 + 0.5 } else { t0 + f64::from(side) - 0.5 }
 }
 
 /// How far beyond `edge`, along its normal, tile column `x`'s pixel centres
 /// nearest it lie: the part of that distance across. A tile lies beyond an
 /// edge when this and its `row_term` add up to more than the margin.
 fn column_term(&(a, n): &Edge, x: usize) -> f64 {
-    let x0 = f64::from(x as u32 * EYE_TILE_WIDTH);
-    (if n[0] > 0.0 { x0 + 0.5 } else { x0 + f64::from(EYE_TILE_WIDTH) - 0.5 } - a[0]) * n[0]
+    (nearest_centre(x, EYE_TILE_WIDTH, n[0]) - a[0]) * n[0]
 }
 
 /// The part down of the distance beyond `edge` of tile row `y`'s pixel
 /// centres nearest it.
 fn row_term(&(a, n): &Edge, y: usize) -> f64 {
-    let y0 = f64::from(y as u32 * EYE_TILE_HEIGHT);
-    (if n[1] > 0.0 { y0 + 0.5 } else { y0 + f64::from(EYE_TILE_HEIGHT) - 0.5 } - a[1]) * n[1]
+    (nearest_centre(y, EYE_TILE_HEIGHT, n[1]) - a[1]) * n[1]
 }
 
 /// `d`'s bits as a key that sorts as `f32::total_cmp` orders `d`.

@@ -201,6 +201,36 @@ fn binning_lists_what_the_reference_binning_lists() {
     assert!(binned >= 25, "only {binned} of 30 views were binned");
 }
 
+#[test]
+fn a_convex_outline_in_order_is_the_hull_the_monotone_chain_finds() {
+    let mut rng = Rng(41);
+    let (mut taken, mut sorted, mut hull) = (0, Vec::new(), Vec::new());
+    for round in 0..4000 {
+        // Corners on an ellipse, in order round it from a random start, either
+        // way round; some of them slivers, some far off the image.
+        let n = 3 + round % 8;
+        let (centre, size) = ([rng.f32() * 600.0 - 50.0, rng.f32() * 600.0 - 50.0], [0.5 + rng.f32() * 40.0, 0.01 + rng.f32() * 40.0]);
+        let mut angles: Vec<f32> = (0..n).map(|_| rng.f32() * std::f32::consts::TAU).collect();
+        angles.sort_by(f32::total_cmp);
+        if round % 2 == 0 {
+            angles.reverse();
+        }
+        angles.rotate_left(round % n);
+        let corners: Vec<[f64; 2]> = angles.iter().map(|a| [f64::from(centre[0] + size[0] * a.cos()), f64::from(centre[1] + size[1] * a.sin())]).collect();
+        let mut chain = Vec::new();
+        sorted.clone_from(&corners);
+        monotone_chain(&mut sorted, &mut chain);
+        if convex_in_order(&corners, &mut hull) {
+            taken += 1;
+            assert_eq!(hull, chain, "corners {corners:?}");
+        }
+    }
+    assert!(taken > 3000, "only {taken} of 4000 outlines were taken as they are");
+    // A star turns the same way at every corner, but goes round twice.
+    let star: Vec<[f64; 2]> = (0..5).map(|k| f64::from(k * 2) * std::f64::consts::TAU / 5.0).map(|a| [100.0 + 50.0 * a.cos(), 100.0 + 50.0 * a.sin()]).collect();
+    assert!(!convex_in_order(&star, &mut hull));
+}
+
 /// `scene`'s footprints as `Renderer::prepare` makes them.
 fn scene_footprints(scene: &Scene) -> Footprints {
     let scene = polygon_split::split_large_polygons(scene);
@@ -212,21 +242,26 @@ fn scene_footprints(scene: &Scene) -> Footprints {
 
 /// The lists as binning first made them, to check the fast binning against:
 /// every tile of each primitive's rectangle tested against every edge of its
-/// outline, and each tile's list sorted on its own.
+/// outline (the monotone chain's hull of its sorted corners), and each tile's
+/// list sorted on its own.
 fn reference_bin(footprints: &Footprints, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
     let view = View::new(camera, width, height);
     let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
     let near: Vec<f32> = footprints.prims.iter().map(|f| view.near(f)).collect();
+    let projections = view.project_all(&footprints.points);
     let mut lists = vec![Vec::new(); across * down];
     let mut outline = Outline::default();
     for (i, f) in footprints.prims.iter().enumerate() {
-        let tiles: Vec<usize> = match view.reach(&footprints.points[f.points.clone()], across, down, &mut outline.projected) {
+        let tiles: Vec<usize> = match view.reach(&footprints.corners[f.corners.clone()], &projections, across, down, &mut outline.projected) {
             Reach::Nowhere => Vec::new(),
             Reach::Everywhere => (0..across * down).collect(),
             Reach::Within { columns, rows, margin } => {
-                let edges = outline.hull().then_some(&outline.edges);
+                let mut points: Vec<[f64; 2]> = outline.projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]).collect();
+                let mut hull = Vec::new();
+                monotone_chain(&mut points, &mut hull);
+                let edges: Option<Vec<Edge>> = has_inside(&hull).then(|| (0..hull.len()).map(|i| edge(hull[i], hull[(i + 1) % hull.len()])).collect());
                 let tiles = rows.flat_map(|y| columns.clone().map(move |x| (x, y)));
-                tiles.filter(|&(x, y)| edges.is_none_or(|edges| !beyond_an_edge(edges, tile_centres(x, y), margin))).map(|(x, y)| y * across + x).collect()
+                tiles.filter(|&(x, y)| edges.as_ref().is_none_or(|edges| !beyond_an_edge(edges, tile_centres(x, y), margin))).map(|(x, y)| y * across + x).collect()
             }
         };
         for tile in tiles {
@@ -264,3 +299,5 @@ fn beyond_an_edge(edges: &[Edge], [x0, y0, x1, y1]: [f64; 4], margin: f64) -> bo
         (nearest[0] - a[0]) * n[0] + (nearest[1] - a[1]) * n[1] > margin
     })
 }
+
+
