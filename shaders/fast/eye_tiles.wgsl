@@ -9,7 +9,8 @@
 // import: bindings dispatch eye_rays fast/camera4 fast/packet types
 
 // Per tile, the index of its first entry and their number; then each tile's
-// entries, primitive indices followed by their distances (f32 bits).
+// entries, primitive indices; then, where the last tile's entries end, each
+// primitive's distance (f32 bits).
 @group(1) @binding(0) var<storage, read> eye_tiles: array<u32>;
 // The scene's primitives (binding 1 of group 0) as four words of 16 bytes each.
 @group(1) @binding(1) var<storage, read> prim_words: array<vec4<u32>>;
@@ -39,11 +40,13 @@ fn trace_eye_block(corner: vec2<u32>, live: bool) -> EyeHits {
     let tile = place.y * tiles.x + place.x;
     let first = eye_tiles[2u * tile];
     let count = eye_tiles[2u * tile + 1u];
+    let last = 2u * (tiles.x * tiles.y - 1u);
+    let distances = eye_tiles[last] + eye_tiles[last + 1u];
     for (var k = 0u; k < count; k += lanes) {
         // Each lane loads one of the next `lanes` entries; the walk takes them in turn.
         let entry = first + min(k + lane, count - 1u);
         let listed = eye_tiles[entry];
-        let listed_near = bitcast<f32>(eye_tiles[entry + count]);
+        let listed_near = bitcast<f32>(eye_tiles[distances + listed]);
         for (var j = 0u; j < min(lanes, count - k); j++) {
             // Nearest first: once every ray has a hit nearer than this entry
             // can be, so has it than every entry after it.

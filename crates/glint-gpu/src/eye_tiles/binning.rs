@@ -11,10 +11,10 @@
 //! every ray has hit something nearer than the next primitive can be.
 //!
 //! A primitive is listed in every tile with a pixel centre in its projection's
-//! bounding rectangle, grown for rounding; one that reaches behind the eye (or
-//! into the eye's plane) is listed everywhere. Each entry carries a distance no hit on
-//! it can be nearer than, with room for rounding, and a tile's entries are in
-//! order of it.
+//! bounding rectangle, grown for rounding, less the tiles beyond its outline;
+//! one that reaches behind the eye (or into the eye's plane) is listed
+//! everywhere. Each primitive has a distance no hit on it can be nearer than,
+//! with room for rounding, and a tile's entries are in order of it.
 
 use std::collections::HashMap;
 use std::ops::Range;
@@ -65,8 +65,9 @@ struct Footprint {
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
 /// per tile (row by row), the index of its first entry and the number of
-/// entries; then each tile's entries, their primitive indices followed by
-/// their distances (as `f32` bits).
+/// entries; then each tile's entries, primitive indices; then, from where the
+/// last tile's entries end, each primitive's distance (as `f32` bits), once
+/// for all the tiles that list it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EyeTiles {
     pub words: Vec<u32>,
@@ -137,19 +138,22 @@ impl Footprints {
             },
         );
         let entries = shares.iter().map(|share| share.tiles.len()).sum::<usize>();
-        if entries > MAX_MEAN_ENTRIES * tiles || 2 * tiles + 2 * entries > u32::MAX as usize {
+        let words = 2 * tiles + entries + near.len();
+        if entries > MAX_MEAN_ENTRIES * tiles || words > u32::MAX as usize {
             return None;
         }
         let mut counts = vec![0u32; tiles];
         for &tile in shares.iter().flat_map(|share| &share.tiles) {
             counts[tile as usize] += 1;
         }
-        let mut words = vec![0u32; 2 * tiles + 2 * entries];
+        let mut words = vec![0u32; words];
         let (heads, lists) = words.split_at_mut(2 * tiles);
+        let (lists, distances) = lists.split_at_mut(entries);
+        distances.iter_mut().zip(&near).for_each(|(word, near)| *word = near.to_bits());
         let mut first = 2 * tiles as u32;
         for (head, &count) in heads.chunks_exact_mut(2).zip(&counts) {
             head.copy_from_slice(&[first, count]);
-            first += 2 * count;
+            first += count;
         }
         // The entries of the first half of the tiles, then the second's.
         let fill = |half: usize, tiles: Range<usize>, lists: &mut [u32]| {
@@ -160,9 +164,8 @@ impl Footprints {
                 let share = &shares[i as usize / SHARE];
                 let k = 2 * (i as usize % SHARE) + half;
                 for tile in share.tiles[share.starts[k]..share.starts[k + 1]].iter().map(|&tile| tile as usize) {
-                    let (slot, count) = (&mut next[tile - tiles.start], counts[tile] as usize);
+                    let slot = &mut next[tile - tiles.start];
                     lists[*slot] = i;
-                    lists[*slot + count] = near[i as usize].to_bits();
                     *slot += 1;
                 }
             }
@@ -213,7 +216,14 @@ impl EyeTiles {
     pub fn entries(&self, x: u32, y: u32) -> (&[u32], impl Iterator<Item = f32> + '_) {
         let tile = (y * self.tiles_across + x) as usize;
         let (first, count) = (self.words[2 * tile] as usize, self.words[2 * tile + 1] as usize);
-        (&self.words[first..first + count], self.words[first + count..first + 2 * count].iter().map(|&w| f32::from_bits(w)))
+        let listed = &self.words[first..first + count];
+        (listed, listed.iter().map(|&i| f32::from_bits(self.words[self.distances() + i as usize])))
+    }
+
+    /// Where the primitives' distances start: where the last tile's entries end.
+    fn distances(&self) -> usize {
+        let last = 2 * (self.tiles_across * self.tiles_down) as usize - 2;
+        (self.words[last] + self.words[last + 1]) as usize
     }
 }
 

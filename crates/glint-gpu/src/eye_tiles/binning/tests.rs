@@ -276,12 +276,12 @@ fn reference_bin(footprints: &Footprints, camera: &GpuCamera, width: u32, height
     for list in &mut lists {
         list.sort_by(|&a, &b| near[a as usize].total_cmp(&near[b as usize]).then(a.cmp(&b)));
         words.extend([first as u32, list.len() as u32]);
-        first += 2 * list.len();
+        first += list.len();
     }
     for list in &lists {
         words.extend(list);
-        words.extend(list.iter().map(|&i| near[i as usize].to_bits()));
     }
+    words.extend(near.iter().map(|d| d.to_bits()));
     Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
 }
 
