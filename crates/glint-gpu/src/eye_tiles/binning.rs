@@ -108,12 +108,18 @@ impl Footprints {
     /// be too long to beat the BVH (`MAX_MEAN_ENTRIES`). Done for every view,
     /// so on every core (docs/decisions/048-cheaper-eye-tile-binning.md).
     pub fn bin(&self, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
+        // Handed to the pool once: each parallel step from outside it would
+        // wake its threads and then this one again.
+        rayon::scope(|_| self.bin_in_pool(camera, width, height))
+    }
+
+    fn bin_in_pool(&self, camera: &GpuCamera, width: u32, height: u32) -> Option<EyeTiles> {
         let view = View::new(camera, width, height);
         let (across, down) = (width.div_ceil(EYE_TILE_WIDTH) as usize, height.div_ceil(EYE_TILE_HEIGHT) as usize);
         let tiles = across * down;
         // The lists are filled in two halves of the tiles, each on a core.
         let middle = tiles / 2;
-        let near: Vec<f32> = self.prims.par_iter().with_min_len(SHARE).map(|f| view.near(f)).collect();
+        let near: Vec<f32> = self.prims.iter().map(|f| view.near(f)).collect();
         let projections = view.project_all(&self.points);
         // Covered in the BVH's order, whose neighbours lie near in memory, a
         // share on whichever core is free.
@@ -278,8 +284,8 @@ impl View {
             Reach::Everywhere => covered.extend(0..(across * down) as u32),
             Reach::Within { columns, rows, margin } => {
                 outline.cut(&columns, &rows, margin);
-                let edges = &outline.edges;
-                if edges.is_empty() {
+                let cuts = &outline.cuts;
+                if cuts.is_empty() {
                     return covered.extend(rows.flat_map(|y| (y * across + columns.start) as u32..(y * across + columns.end) as u32));
                 }
                 // Along a row, the tiles beyond an edge whose normal points
@@ -289,14 +295,14 @@ impl View {
                 // not beyond a leading edge to the last not beyond a trailing one.
                 for y in rows {
                     let (mut first, mut end) = (columns.start, columns.end);
-                    for edge in edges {
-                        let row = row_term(edge, y);
-                        let beyond = |x: usize| column_term(edge, x) + row > margin;
-                        if edge.1[0] > 0.0 {
+                    for cut in cuts {
+                        let row = cut.row_term(y);
+                        let beyond = |x: usize| cut.column_term(x) + row > margin;
+                        if cut.edge.1[0] > 0.0 {
                             while end > first && beyond(end - 1) {
                                 end -= 1;
                             }
-                        } else if edge.1[0] < 0.0 {
+                        } else if cut.edge.1[0] < 0.0 {
                             while first < end && beyond(first) {
                                 first += 1;
                             }
@@ -407,7 +413,7 @@ struct Outline {
     projected: Vec<[f32; 2]>,
     sorted: Vec<[f64; 2]>,
     hull: Vec<[f64; 2]>,
-    edges: Vec<Edge>,
+    cuts: Vec<Cut>,
 }
 
 impl Outline {
@@ -422,23 +428,24 @@ impl Outline {
     /// is let go before its normal is scaled: scaled, rounding could move it
     /// by far less than `margin`.
     fn cut(&mut self, columns: &Range<usize>, rows: &Range<usize>, margin: f64) {
-        self.edges.clear();
+        self.cuts.clear();
         if !self.hull() {
             return;
         }
-        let Outline { hull, edges, .. } = self;
+        let Outline { hull, cuts, .. } = self;
         let n = hull.len();
         let outmost = |outward: bool, tiles: &Range<usize>| if outward { tiles.end - 1 } else { tiles.start };
         for i in 0..n {
             let (a, b) = (hull[i], hull[if i + 1 == n { 0 } else { i + 1 }]);
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
             let (x, y) = (outmost(dy > 0.0, columns), outmost(-dx > 0.0, rows));
-            if (nearest_centre(x, EYE_TILE_WIDTH, dy) - a[0]) * dy - (nearest_centre(y, EYE_TILE_HEIGHT, -dx) - a[1]) * dx <= 0.0 {
+            let nearest = |t: usize, side: u32, toward: f64| f64::from(t as u32 * side) + nearest_offset(side, toward);
+            if (nearest(x, EYE_TILE_WIDTH, dy) - a[0]) * dy - (nearest(y, EYE_TILE_HEIGHT, -dx) - a[1]) * dx <= 0.0 {
                 continue;
             }
-            let edge = edge(a, b);
-            if column_term(&edge, x) + row_term(&edge, y) > margin {
-                edges.push(edge);
+            let cut = Cut::new(edge(a, b));
+            if cut.column_term(x) + cut.row_term(y) > margin {
+                cuts.push(cut);
             }
         }
     }
@@ -560,24 +567,40 @@ fn convex_in_order(points: &[[f64; 2]], hull: &mut Vec<[f64; 2]>) -> bool {
 /// of `cross`, so that the chain would find every turn as it does.
 const CLEAR_TURN: f64 = 1e-9;
 
-/// The pixel centre of tile `t` (`side` pixels) nearest the side a normal
-/// component `toward` faces away from: the first when it is positive.
-fn nearest_centre(t: usize, side: u32, toward: f64) -> f64 {
-    let t0 = f64::from(t as u32 * side);
-    if toward > 0.0 { t0 + 0.5 } else { t0 + f64::from(side) - 0.5 }
+/// A hull edge that takes tiles, with the offsets from a tile's first pixel
+/// to its pixel centres nearest the edge, across and down.
+struct Cut {
+    edge: Edge,
+    nearest: [f64; 2],
 }
 
-/// How far beyond `edge`, along its normal, tile column `x`'s pixel centres
-/// nearest it lie: the part of that distance across. A tile lies beyond an
-/// edge when this and its `row_term` add up to more than the margin.
-fn column_term(&(a, n): &Edge, x: usize) -> f64 {
-    (nearest_centre(x, EYE_TILE_WIDTH, n[0]) - a[0]) * n[0]
+impl Cut {
+    fn new(edge: Edge) -> Cut {
+        let n = edge.1;
+        Cut { edge, nearest: [nearest_offset(EYE_TILE_WIDTH, n[0]), nearest_offset(EYE_TILE_HEIGHT, n[1])] }
+    }
+
+    /// How far beyond the edge, along its normal, tile column `x`'s pixel
+    /// centres nearest it lie: the part of that distance across. A tile lies
+    /// beyond the edge when this and its `row_term` add up to more than the margin.
+    fn column_term(&self, x: usize) -> f64 {
+        let (a, n) = self.edge;
+        (f64::from(x as u32 * EYE_TILE_WIDTH) + self.nearest[0] - a[0]) * n[0]
+    }
+
+    /// The part down of the distance beyond the edge of tile row `y`'s pixel
+    /// centres nearest it.
+    fn row_term(&self, y: usize) -> f64 {
+        let (a, n) = self.edge;
+        (f64::from(y as u32 * EYE_TILE_HEIGHT) + self.nearest[1] - a[1]) * n[1]
+    }
 }
 
-/// The part down of the distance beyond `edge` of tile row `y`'s pixel
-/// centres nearest it.
-fn row_term(&(a, n): &Edge, y: usize) -> f64 {
-    (nearest_centre(y, EYE_TILE_HEIGHT, n[1]) - a[1]) * n[1]
+/// From a tile's first pixel to its pixel centre nearest the side that a
+/// normal's component `toward` faces away from, `side` pixels a tile: the
+/// first centre when the component is positive, else the last.
+fn nearest_offset(side: u32, toward: f64) -> f64 {
+    if toward > 0.0 { 0.5 } else { f64::from(side) - 0.5 }
 }
 
 /// `d`'s bits as a key that sorts as `f32::total_cmp` orders `d`.
