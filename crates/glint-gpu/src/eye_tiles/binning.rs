@@ -144,15 +144,15 @@ impl Footprints {
             },
         );
         let entries = shares.iter().map(|share| share.tiles.len()).sum::<usize>();
-        let words = 2 * tiles + entries + near.len();
-        if entries > MAX_MEAN_ENTRIES * tiles || words > u32::MAX as usize {
+        let length = 2 * tiles + entries + near.len();
+        if entries > MAX_MEAN_ENTRIES * tiles || length > u32::MAX as usize {
             return None;
         }
         let mut counts = vec![0u32; tiles];
         for &tile in shares.iter().flat_map(|share| &share.tiles) {
             counts[tile as usize] += 1;
         }
-        let mut words = vec![0u32; words];
+        let mut words = vec![0u32; length];
         let (heads, lists) = words.split_at_mut(2 * tiles);
         let (lists, distances) = lists.split_at_mut(entries);
         distances.iter_mut().zip(&near).for_each(|(word, near)| *word = near.to_bits());
