@@ -417,7 +417,7 @@ struct Outline {
 }
 
 impl Outline {
-    /// Makes `edges` those edges of the convex hull of `projected` that take
+    /// Makes `cuts` those edges of the convex hull of `projected` that take
     /// tiles from the rectangle of `columns` × `rows`, their normals pointing
     /// out of it; none when the hull has no inside.
     ///
