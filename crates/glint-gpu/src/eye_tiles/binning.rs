@@ -61,6 +61,9 @@ struct Footprint {
     lo: Vec3,
     hi: Vec3,
     corners: Range<usize>,
+    /// The corners are a triangle's or a polygon's, in order round it (a
+    /// box's are not), so a convex one may be its own hull.
+    in_order: bool,
 }
 
 /// The tiles' lists as the kernel reads them, one array of words: first two
@@ -98,7 +101,7 @@ impl Footprints {
                     PRIM_POLYGON => scene.points[p.first as usize..(p.first + p.count) as usize].iter().map(vertex).for_each(&mut add),
                     _ => self::corners(lo, hi).into_iter().for_each(&mut add),
                 }
-                Footprint { lo, hi, corners: first..corners.len() }
+                Footprint { lo, hi, corners: first..corners.len(), in_order: matches!(p.kind(), PRIM_TRIANGLE | PRIM_POLYGON) }
             })
             .collect();
         Footprints { prims, corners, points }
@@ -133,7 +136,7 @@ impl Footprints {
                         covered.starts.push(0);
                         for prim in prims {
                             let start = covered.tiles.len();
-                            view.cover(&self.corners[prim.corners.clone()], &projections, across, down, &mut covered.outline, &mut covered.tiles);
+                            view.cover(self.corners_of(prim), &projections, across, down, &mut covered.outline, &mut covered.tiles);
                             // A primitive's tiles ascend, so those in each half are one stretch.
                             covered.starts.push(start + covered.tiles[start..].partition_point(|&tile| (tile as usize) < middle));
                             covered.starts.push(covered.tiles.len());
@@ -179,6 +182,11 @@ impl Footprints {
         let (low, high) = lists.split_at_mut(heads[2 * middle] as usize - 2 * tiles);
         rayon::join(|| fill(0, 0..middle, low), || fill(1, middle..tiles, high));
         Some(EyeTiles { words, tiles_across: across as u32, tiles_down: down as u32 })
+    }
+
+    /// `prim`'s corners, as indices into `points`, and whether they go round it in order.
+    fn corners_of(&self, prim: &Footprint) -> (&[u32], bool) {
+        (&self.corners[prim.corners.clone()], prim.in_order)
     }
 }
 
@@ -278,12 +286,12 @@ impl View {
     /// hit what `points` bound, row by row: those its projection's bounding
     /// rectangle reaches, less those wholly beyond one of the edges of its
     /// convex hull.
-    fn cover(&self, corners: &[u32], projections: &Projections, across: usize, down: usize, outline: &mut Outline, covered: &mut Vec<u32>) {
+    fn cover(&self, (corners, in_order): (&[u32], bool), projections: &Projections, across: usize, down: usize, outline: &mut Outline, covered: &mut Vec<u32>) {
         match self.reach(corners, projections, across, down, &mut outline.projected) {
             Reach::Nowhere => {}
             Reach::Everywhere => covered.extend(0..(across * down) as u32),
             Reach::Within { columns, rows, margin } => {
-                outline.cut(&columns, &rows, margin);
+                outline.cut(&columns, &rows, margin, in_order);
                 let cuts = &outline.cuts;
                 if cuts.is_empty() {
                     return covered.extend(rows.flat_map(|y| (y * across + columns.start) as u32..(y * across + columns.end) as u32));
@@ -427,9 +435,9 @@ impl Outline {
     /// included. An edge whose unscaled distance to that tile is not positive
     /// is let go before its normal is scaled: scaled, rounding could move it
     /// by far less than `margin`.
-    fn cut(&mut self, columns: &Range<usize>, rows: &Range<usize>, margin: f64) {
+    fn cut(&mut self, columns: &Range<usize>, rows: &Range<usize>, margin: f64, in_order: bool) {
         self.cuts.clear();
-        if !self.hull() {
+        if !self.hull(in_order) {
             return;
         }
         let Outline { hull, cuts, .. } = self;
@@ -452,12 +460,12 @@ impl Outline {
 
     /// Makes `hull` the convex hull of `projected`, counter-clockwise from its
     /// lowest point in x, then y, as Andrew's monotone chain leaves it. False
-    /// when the hull has no inside.
-    fn hull(&mut self) -> bool {
+    /// when the hull has no inside. `in_order`: the points go round an outline.
+    fn hull(&mut self, in_order: bool) -> bool {
         let Outline { projected, sorted: points, hull, .. } = self;
         points.clear();
         points.extend(projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]));
-        if !convex_in_order(points, hull) {
+        if !(in_order && convex_in_order(points, hull)) {
             monotone_chain(points, hull);
         }
         has_inside(hull)
