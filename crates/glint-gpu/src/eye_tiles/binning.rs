@@ -283,9 +283,9 @@ impl View {
     }
 
     /// Appends to `covered` the tiles with a pixel centre whose eye ray can
-    /// hit what `points` bound, row by row: those its projection's bounding
-    /// rectangle reaches, less those wholly beyond one of the edges of its
-    /// convex hull.
+    /// hit what the points `corners` bound, row by row: those its projection's
+    /// bounding rectangle reaches, less those wholly beyond one of the edges of
+    /// its convex hull. `in_order`: the corners go round an outline.
     fn cover(&self, (corners, in_order): (&[u32], bool), projections: &Projections, across: usize, down: usize, outline: &mut Outline, covered: &mut Vec<u32>) {
         match self.reach(corners, projections, across, down, &mut outline.projected) {
             Reach::Nowhere => {}
