@@ -419,7 +419,8 @@ type Edge = ([f64; 2], [f64; 2]);
 #[derive(Default)]
 struct Outline {
     projected: Vec<[f32; 2]>,
-    sorted: Vec<[f64; 2]>,
+    /// The projections in f64, which the monotone chain sorts.
+    points: Vec<[f64; 2]>,
     hull: Vec<[f64; 2]>,
     cuts: Vec<Cut>,
 }
@@ -462,7 +463,7 @@ impl Outline {
     /// lowest point in x, then y, as Andrew's monotone chain leaves it. False
     /// when the hull has no inside. `in_order`: the points go round an outline.
     fn hull(&mut self, in_order: bool) -> bool {
-        let Outline { projected, sorted: points, hull, .. } = self;
+        let Outline { projected, points, hull, .. } = self;
         points.clear();
         points.extend(projected.iter().map(|p| [f64::from(p[0]), f64::from(p[1])]));
         if !(in_order && convex_in_order(points, hull)) {
