@@ -6,7 +6,7 @@ mod support;
 
 use glint_encoding::gpu_types::{View, MISS};
 use glint_gpu::shaders::{Kernel, ShaderSource};
-use glint_gpu::{display, Acceleration, RenderOptions, Renderer, ToneMap};
+use glint_gpu::{display, Acceleration, DeviceProfile, RenderOptions, Renderer, ToneMap};
 
 /// Samples covering what the kernels write: radiance sums of several samples,
 /// zeros, unit normals, depths and misses, ids and −1, node counts, NaN.
@@ -104,4 +104,35 @@ fn a_render_on_a_cpu_adapter_resolves_on_the_host_without_compiling_the_resolve_
     }
     let kernels = renderer.kernels_created();
     assert!(kernels.contains(&Kernel::Trace) && !kernels.contains(&Kernel::Resolve), "{kernels:?}");
+}
+
+/// Depth and the heat map store one number a pixel and leave the rest of the
+/// accumulation as it was: after a shaded render of several samples in the
+/// same buffers, they must read as they do in fresh ones, whether resolved on
+/// the host or by the kernel.
+#[test]
+fn a_view_of_one_number_reads_the_same_over_another_views_samples() {
+    let gpu = support::gpu();
+    let scene = support::parse(
+        "[image]\nwidth = 12\nheight = 10\nbackground = [0.25, 0.5, 0]\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 30\n\
+[ambient]\nintensity = 1\n[material.white]\ncolor = 1\nka = 1\n[[object]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"white\"\n\
+[[object]]\ntype = \"sphere\"\ncenter = [1.2, 0.8, -1]\nradius = 0.4\nmaterial = \"white\"\n",
+    );
+    let on_device = DeviceProfile { resolves_on_host: false, ..*support::renderer().profile() };
+    let renderers = [support::renderer(), &Renderer::with_profile(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded, on_device).unwrap()];
+    for renderer in renderers {
+        let render = |buffers: &glint_gpu::SceneBuffers, view| {
+            let options = RenderOptions { view, spp: 3, view_scale: 10.0, ..RenderOptions::default() };
+            renderer.render(buffers, &options, &mut |_, _| {}).unwrap().0
+        };
+        for view in View::ALL.into_iter().filter(|view| view.is_one_number()) {
+            let fresh = render(&renderer.prepare(&scene, 12, 10, Acceleration::Bvh).unwrap().buffers, view);
+            let used = renderer.prepare(&scene, 12, 10, Acceleration::Bvh).unwrap().buffers;
+            render(&used, View::Shaded);
+            let over = render(&used, view);
+            assert!(fresh.linear.iter().any(|p| p[0] != fresh.linear[0][0]), "{view:?} shows the spheres");
+            assert_eq!(over.linear, fresh.linear, "{view:?}, resolved on the host: {}", renderer.resolves_on_host());
+            assert_eq!(over.display, fresh.display, "{view:?}");
+        }
+    }
 }

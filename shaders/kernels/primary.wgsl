@@ -7,19 +7,17 @@
 // pixels as one packet (fast/eye_bvh.wgsl, fast/eye_tiles.wgsl).
 // import: camera checker dispatch eye_block primitive scene_arrays types
 
-// What `view` shows of the eye ray `eye`'s closest hit: primitive `prim` at
-// distance `t`, or MISS.
+// What `view` shows of the eye ray `eye`'s closest hit, primitive `prim` at
+// distance `t` (or MISS), in the views of more than one number.
 fn primary_view(eye: Ray, t: f32, prim: u32) -> vec3<f32> {
     if t == MISS {
         switch dispatch_view() {
-            case VIEW_DEPTH: { return vec3<f32>(MISS); }
             case VIEW_ID: { return vec3<f32>(-1.0); }
             default: { return vec3<f32>(0.0); }
         }
     }
     let p = prim_at(prim);
     switch dispatch_view() {
-        case VIEW_DEPTH: { return vec3<f32>(t); }
         case VIEW_ALBEDO: { return material_at(p, eye.origin + t * eye.dir).color; }
         // x for display and AOVs (exact up to 2^24), y the index's own bits,
         // which picking reads: exact for any number of objects.
@@ -51,7 +49,9 @@ fn primary_main(
             hit_count += u32(hits.t[k] != MISS);
             miss_count += u32(hits.t[k] == MISS);
             if dispatch_view() == VIEW_HEATMAP {
-                write_pixel(pixel, vec3<f32>(f32(hits.visited[k])));
+                write_number(pixel, f32(hits.visited[k]));
+            } else if dispatch_view() == VIEW_DEPTH {
+                write_number(pixel, hits.t[k]);
             } else {
                 write_pixel(pixel, primary_view(camera_ray(vec2<f32>(pixel) + 0.5), hits.t[k], hits.prim[k]));
             }

@@ -69,6 +69,12 @@ fn write_pixel(pixel: vec2<u32>, value: vec3<f32>) {
     accum[accum_index(pixel)] = vec4<f32>(value, 1.0);
 }
 
+// A view of one number (depth, heat map) stores it alone, a quarter of the
+// stores; the resolve reads x alone for such views (display.wgsl).
+fn write_number(pixel: vec2<u32>, value: f32) {
+    accum[accum_index(pixel)].x = value;
+}
+
 // Ray counts go to this workgroup's slot (of STAT_SLOTS): a workgroup barrier
 // to sum them first would cost more than the few uncontended atomics. The
 // atomics step through a bit mask of the kinds counted, a loop whose count

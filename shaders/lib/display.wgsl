@@ -62,7 +62,15 @@ fn is_data_view(view: u32) -> bool {
         || view == VIEW_RAY_DEPTH || view == VIEW_RAY_COUNT;
 }
 
+// Depth and the heat map store their one number alone, in x, with no count.
+fn is_one_number_view(view: u32) -> bool {
+    return view == VIEW_DEPTH || view == VIEW_HEATMAP;
+}
+
 fn linear_value(s: vec4<f32>) -> vec3<f32> {
+    if is_one_number_view(params.view) {
+        return vec3<f32>(s.x);
+    }
     let mean = s.rgb / max(s.w, 1.0);
     return select(mean * params.exposure, mean, is_data_view(params.view));
 }

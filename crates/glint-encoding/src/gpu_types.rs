@@ -217,6 +217,13 @@ impl View {
     pub fn is_data(self) -> bool {
         matches!(self, View::Normal | View::Depth | View::Id | View::Heatmap | View::RayDepth | View::RayCount)
     }
+
+    /// Views of one number a pixel (depth, heat map), written once with no
+    /// sample count: the kernels store it alone, in x, and the resolve reads x
+    /// alone (docs/decisions/051-one-number-views-store-one-number.md).
+    pub fn is_one_number(self) -> bool {
+        matches!(self, View::Depth | View::Heatmap)
+    }
 }
 
 /// How samples are spread over and around their pixel.

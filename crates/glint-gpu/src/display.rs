@@ -19,8 +19,12 @@ pub fn resolve(samples: &[[f32; 4]], width: u32, height: u32, options: &RenderOp
     }
 }
 
-/// The mean of the samples; scaled by the exposure unless `view` is a data view.
+/// The mean of the samples; scaled by the exposure unless `view` is a data
+/// view. A view of one number is its x alone.
 pub fn linear_value(sample: [f32; 4], options: &RenderOptions) -> [f32; 3] {
+    if options.view.is_one_number() {
+        return [sample[0]; 3];
+    }
     let n = sample[3].max(1.0);
     let scale = if options.view.is_data() { 1.0 } else { options.exposure };
     [0, 1, 2].map(|c| sample[c] / n * scale)
