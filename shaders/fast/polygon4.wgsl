@@ -23,3 +23,14 @@ fn polygon_intersect4(p: GpuPrim, rays: Rays4, frame: RayFrame4, t_min: vec4<f32
     }
     return select(miss, t, inside != crosses4(prev, first));
 }
+
+// Whether the edge a→b crosses the +x half-line, as polygon_intersect decides
+// it for each ray. edge_sign(a, b) is 0 where its two products are equal and
+// positive where the left one is greater, so they are compared here directly.
+fn crosses4(a: Vec3x4, b: Vec3x4) -> vec4<bool> {
+    let zero = vec4<f32>(0.0);
+    let rising = b.y >= zero;
+    let left = a.x * b.y;
+    let right = a.y * b.x;
+    return ((a.y >= zero) != rising) & ((left == right) | ((left > right) == rising));
+}

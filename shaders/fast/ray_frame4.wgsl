@@ -1,5 +1,4 @@
-// The ray frames of ray_frame.wgsl for the four rays of a packet, and the
-// edge tests made in them.
+// The ray frames of ray_frame.wgsl for the four rays of a packet.
 // import: fast/rays4 ray_frame
 
 // The frames of four rays, ray k's in component k of each member: what a
@@ -36,15 +35,4 @@ fn edge_sign4(a: Vec3x4, b: Vec3x4) -> vec4<f32> {
     let left = a.x * b.y;
     let right = a.y * b.x;
     return select(select(vec4<f32>(-1.0), vec4<f32>(1.0), left > right), vec4<f32>(0.0), left == right);
-}
-
-// Whether the edge a→b crosses the +x half-line, as polygon_intersect decides
-// it for each ray. edge_sign(a, b) is 0 where its two products are equal and
-// positive where the left one is greater, so they are compared here directly.
-fn crosses4(a: Vec3x4, b: Vec3x4) -> vec4<bool> {
-    let zero = vec4<f32>(0.0);
-    let rising = b.y >= zero;
-    let left = a.x * b.y;
-    let right = a.y * b.x;
-    return ((a.y >= zero) != rising) & ((left == right) | ((left > right) == rising));
 }

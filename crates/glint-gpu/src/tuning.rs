@@ -71,8 +71,7 @@ impl WorkgroupSizes {
 }
 
 /// A file of shaders/fast/ that a tuning composes in place of one of
-/// shaders/lib/ (or of another of shaders/fast/), declaring the same
-/// functions (tests/wgsl.rs checks).
+/// shaders/lib/, declaring the same functions (tests/wgsl.rs checks).
 #[derive(Debug, Clone, Copy)]
 pub struct StandIn {
     pub plain: &'static str,
@@ -82,13 +81,12 @@ pub struct StandIn {
 }
 
 /// Every stand-in; the first that a tuning asks for takes the plain file's place.
-pub const STAND_INS: [StandIn; 8] = [
+pub const STAND_INS: [StandIn; 7] = [
     StandIn { plain: "lib/scene_arrays.wgsl", fast: "fast/scene_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
     StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/uniform_tree.wgsl", when: |t| t.uniform_tree },
     StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/bvh_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
     StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_tiles.wgsl", when: |t| t.packets && t.eye_tiles },
     StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_bvh.wgsl", when: |t| t.packets },
-    StandIn { plain: "fast/polygon4.wgsl", fast: "fast/shared_polygon4.wgsl", when: |t| t.packets && t.eye_tiles },
     StandIn { plain: "lib/band_order.wgsl", fast: "fast/spread.wgsl", when: |t| t.spread },
     StandIn { plain: "lib/ray_tree.wgsl", fast: "fast/ray_tree.wgsl", when: |t| t.one_walk_tree },
 ];
