@@ -6,7 +6,7 @@ mod support;
 
 use glint_encoding::gpu_types::{View, MISS};
 use glint_gpu::shaders::{Kernel, ShaderSource};
-use glint_gpu::{display, Acceleration, DeviceProfile, RenderOptions, Renderer, ToneMap};
+use glint_gpu::{display, Acceleration, DeviceProfile, RenderOptions, Renderer, SceneBuffers, ToneMap};
 
 /// Samples covering what the kernels write: radiance sums of several samples,
 /// zeros, unit normals, depths and misses, ids and −1, node counts, NaN.
@@ -121,7 +121,7 @@ fn a_view_of_one_number_reads_the_same_over_another_views_samples() {
     let on_device = DeviceProfile { resolves_on_host: false, ..*support::renderer().profile() };
     let renderers = [support::renderer(), &Renderer::with_profile(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded, on_device).unwrap()];
     for renderer in renderers {
-        let render = |buffers: &glint_gpu::SceneBuffers, view| {
+        let render = |buffers: &SceneBuffers, view| {
             let options = RenderOptions { view, spp: 3, view_scale: 10.0, ..RenderOptions::default() };
             renderer.render(buffers, &options, &mut |_, _| {}).unwrap().0
         };

@@ -6,7 +6,8 @@
 // Uniform buffers: see MAX_LIGHTS and MAX_MATERIALS in gpu_types.rs.
 @group(0) @binding(3) var<uniform> materials: array<GpuMaterial, MAX_MATERIALS>;
 @group(0) @binding(4) var<uniform> lights: array<GpuLight, MAX_LIGHTS>;
-// Running sum of samples per pixel: rgb and the sample count in w.
+// Running sum of samples per pixel: rgb and the sample count in w; a view of
+// one number (depth, heat map) holds it in x alone (dispatch.wgsl).
 @group(0) @binding(6) var<storage, read_write> accum: array<vec4<f32>>;
 // Ray counts: STAT_COUNT counters per slot, one slot per workgroup (modulo the
 // slot count), so counting needs no barrier and atomics rarely contend.
