@@ -8,7 +8,8 @@
 For each scene, alternating the two renderers:
   * warm primary rays: `glint bench FILE --json` (median frame of the depth
     view, one eye ray per pixel) against Mitsuba's `aov` depth integrator,
-    median of as many renders after one warm-up render (JIT) in one process;
+    median of as many renders in one process, after the first render (JIT)
+    and WARM_UP seconds of renders after it, for both renderers alike;
     the fastest of --warm-runs rounds, each round one process of each,
     alternating, so that a drift of the VM's speed between the two
     measurements (seen here: one renderer's warm frame 1.5-2x slower from one
@@ -36,6 +37,9 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# Seconds of untimed renders after the first: lavapipe runs its first frames
+# after a compile up to twice as slow (docs/decisions/053-warm-frames-after-the-compile-settles.md).
+WARM_UP = 0.2
 REPO = os.path.dirname(os.path.dirname(HERE))
 CLASSIC = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 
@@ -72,7 +76,8 @@ def timed(command, env=None):
 
 
 def glint_warm(glint, nff, size, frames):
-    out = subprocess.run([glint, "bench", nff, "--width", str(size), "--height", str(size), "--frames", str(frames), "--json"],
+    out = subprocess.run([glint, "bench", nff, "--width", str(size), "--height", str(size), "--frames", str(frames),
+                          "--warm-up", str(WARM_UP), "--json"],
                          check=True, capture_output=True, text=True).stdout
     return json.loads(out.splitlines()[-1])["primary_ms"] / 1e3
 
@@ -149,6 +154,9 @@ def worker(args):
         print(json.dumps({}))
         return
     render()
+    warm = time.perf_counter() + WARM_UP
+    while time.perf_counter() < warm:
+        render()
     times = []
     for _ in range(args.frames):
         start = time.perf_counter()

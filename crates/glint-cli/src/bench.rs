@@ -22,9 +22,14 @@ pub struct BenchArgs {
     width: u32,
     #[arg(long, default_value_t = 512)]
     height: u32,
-    /// Timed frames per measurement, after one warm-up frame; the median is reported
+    /// Timed frames per measurement, after the warm-up; the median is reported
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     frames: u32,
+    /// Seconds of untimed frames after the first, which compiles the kernels:
+    /// the driver runs its first frames after a compile slower
+    /// (docs/decisions/053-warm-frames-after-the-compile-settles.md)
+    #[arg(long, default_value_t = 0.2, value_parser = parse_seconds)]
+    warm_up: f64,
     /// Acceleration structure to measure (brute force tests every primitive per ray)
     #[arg(long, value_enum, default_value_t = AccelArg::Bvh)]
     accel: AccelArg,
@@ -73,6 +78,8 @@ struct Measurement {
     primary: Duration,
     /// The view's host work alone: its eye tiles binned for the camera.
     view_work: Duration,
+    /// Untimed primary frames within the warm-up, after the first.
+    warm_up_frames: usize,
     whitted: Duration,
     stats: RayStats,
     nodes_per_primary_ray: f64,
@@ -120,11 +127,12 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
     // camera moves, each frame follows a view's host work as in the viewer:
     // the camera and lights written, the eye tiles binned; the frame's
     // submission takes the lists with it.
-    let mut time = |view: View, camera_moves: bool| -> Result<(Duration, Duration, RayStats), Failure> {
+    let mut time = |view: View, camera_moves: bool| -> Result<(Duration, Duration, usize, RayStats), Failure> {
         let options = RenderOptions { view, ..RenderOptions::default() };
         let mut stats = RayStats::default();
         let (mut times, mut view_times) = (Vec::new(), Vec::new());
-        for frame in 0..=args.frames {
+        let (mut warm_from, mut warm_up_frames) = (None, 0);
+        while times.len() < args.frames as usize {
             let start = Instant::now();
             if camera_moves {
                 (prepared.buffers.specialization, prepared.buffers.tuning) = scene_kernels;
@@ -134,16 +142,20 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
             let view_time = start.elapsed();
             (prepared.buffers.specialization, prepared.buffers.tuning) = timed_kernels(scene_kernels, view, renderer.profile());
             stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
-            // The first frame warms up.
-            if frame > 0 {
-                times.push(start.elapsed());
-                view_times.push(view_time);
+            // The first frame compiles; frames that start within the warm-up after it are not timed.
+            match warm_from {
+                None => warm_from = Some(Instant::now() + Duration::from_secs_f64(args.warm_up)),
+                Some(warm) if start < warm => warm_up_frames += 1,
+                Some(_) => {
+                    times.push(start.elapsed());
+                    view_times.push(view_time);
+                }
             }
         }
-        Ok((median(times), median(view_times), stats))
+        Ok((median(times), median(view_times), warm_up_frames, stats))
     };
-    let (primary, view_work, _) = time(View::Depth, true)?;
-    let (whitted, _, stats) = time(View::Shaded, false)?;
+    let (primary, view_work, warm_up_frames, _) = time(View::Depth, true)?;
+    let (whitted, _, _, stats) = time(View::Shaded, false)?;
     let heat_options = RenderOptions { view: View::Heatmap, ..RenderOptions::default() };
     let (heat, _) = renderer.render(&prepared.buffers, &heat_options, &mut |_, _| {})?;
     let nodes_per_primary_ray = heat.linear.iter().map(|p| f64::from(p[0])).sum::<f64>() / heat.linear.len() as f64;
@@ -157,6 +169,7 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         gpu_bytes: buffers.scene_bytes,
         primary,
         view_work,
+        warm_up_frames,
         whitted,
         stats,
         nodes_per_primary_ray,
@@ -170,6 +183,13 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
 fn timed_kernels(scene_kernels: (Specialization, Tuning), view: View, profile: &DeviceProfile) -> (Specialization, Tuning) {
     let (specialization, tuning) = scene_kernels;
     (specialization.for_views(&[view]), Tuning { packets: profile.packets_for(u64::MAX), ..tuning })
+}
+
+fn parse_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(seconds) if (0.0..=60.0).contains(&seconds) => Ok(seconds),
+        _ => Err(format!("`{text}` is not a number of seconds from 0 to 60")),
+    }
 }
 
 fn median(mut times: Vec<Duration>) -> Duration {
@@ -197,6 +217,7 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
             "gpu_bytes_per_prim": m.gpu_bytes as f64 / m.prims.max(1) as f64,
             "primary_ms": ms(m.primary),
             "view_work_ms": ms(m.view_work),
+            "warm_up_frames": m.warm_up_frames,
             "render_ms": ms(m.whitted),
             "primary_mrays_per_s": mrays(pixels, m.primary),
             "whitted_mrays_per_s": mrays(m.stats.total(), m.whitted),

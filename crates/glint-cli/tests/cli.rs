@@ -195,6 +195,25 @@ fn bench_times_the_kernels_of_a_long_render() {
     assert!(view > 0.0 && primary >= view, "{report}");
 }
 
+/// Frames that start within `--warm-up` seconds of the first, which
+/// compiles, are traced but not timed.
+#[test]
+fn bench_leaves_the_warm_up_untimed() {
+    let dir = tempfile::tempdir().unwrap();
+    let warm_up_frames = |seconds: &str| {
+        let o = glint_at_width(None, dir.path(), &["bench", "spd:tetra:1", "--width", "16", "--height", "16", "--frames", "1", "--warm-up", seconds, "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
+        report["warm_up_frames"].as_u64().unwrap_or_else(|| panic!("no warm_up_frames: {report}"))
+    };
+    assert_eq!(warm_up_frames("0"), 0);
+    // A 16×16 frame takes milliseconds.
+    assert!(warm_up_frames("0.3") > 1);
+    let o = glint(&["bench", "spd:tetra:1", "--warm-up", "61"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("`61` is not a number of seconds from 0 to 60"), "{}", stderr(&o));
+}
+
 #[test]
 fn bad_inputs_fail_with_one_line_and_leave_no_file() {
     let dir = tempfile::tempdir().unwrap();
