@@ -4,6 +4,7 @@ mod bench;
 mod bench_cold;
 mod check;
 mod compare;
+mod effects;
 mod frames;
 mod grade;
 mod info;

@@ -4,6 +4,7 @@
 //! run, however many students there are; a student's missing, unreadable or
 //! wrongly sized image is that case's verdict, and the run goes on.
 
+use std::cell::OnceCell;
 use std::path::{Path, PathBuf};
 
 use glint_gpu::{Format, Image, Renderer};
@@ -11,11 +12,12 @@ use glint_gpu::{Format, Image, Renderer};
 use crate::case_render::{render, Rendered};
 use crate::comparison::{compare, Roles};
 use crate::criteria::Criteria;
+use crate::diagnosis::{diagnose, variants, Variant};
 use crate::image_io::{self, LinearImage};
 use crate::manifest::file_stem_of;
 use crate::runner::{Outcome, Points, Status};
 use crate::scoring::Scoring;
-use crate::settings::RenderSettings;
+use crate::settings::{RenderSettings, ViewName};
 
 /// What `image` may hold in its path: the student's folder name.
 pub const STUDENT_PLACEHOLDER: &str = "{student}";
@@ -120,6 +122,9 @@ impl Grades {
 /// A case's reference as made once for the run.
 struct Prepared {
     image: Result<ReferenceImage, String>,
+    /// The scene's variants with one effect changed, rendered at the first
+    /// submission that fails (`diagnosis.rs`); none for a reference file.
+    variants: OnceCell<Vec<Variant>>,
     /// The render settings in words, or the reference file's size.
     settings: Option<String>,
     file: (&'static str, PathBuf),
@@ -128,19 +133,19 @@ struct Prepared {
 enum ReferenceImage {
     /// A render as it reads back from a PNG, and from a float file, made once
     /// for every student.
-    Rendered { png: LinearImage, float: LinearImage },
+    Rendered { image: Image, png: LinearImage, float: LinearImage },
     Read(LinearImage),
 }
 
 impl ReferenceImage {
     fn rendered(image: &Image) -> ReferenceImage {
-        ReferenceImage::Rendered { png: LinearImage::from_render(image, Format::Png), float: LinearImage::from_render(image, Format::Exr) }
+        ReferenceImage::Rendered { image: image.clone(), png: LinearImage::from_render(image, Format::Png), float: LinearImage::from_render(image, Format::Exr) }
     }
 
     /// A render is compared as it reads back in the submission's format.
     fn linear(&self, format: Format) -> &LinearImage {
         match self {
-            ReferenceImage::Rendered { png, float } => if format == Format::Png { png } else { float },
+            ReferenceImage::Rendered { png, float, .. } => if format == Format::Png { png } else { float },
             ReferenceImage::Read(image) => image,
         }
     }
@@ -171,7 +176,7 @@ pub fn grade(
     let grades = students
         .iter()
         .map(|student| {
-            let outcomes = cases.iter().zip(&prepared).map(|(case, p)| grade_one(case, p, student, report_images)).collect();
+            let outcomes = cases.iter().zip(&prepared).map(|(case, p)| grade_one(case, p, renderer, student, report_images)).collect();
             let grades = Grades { student: student.clone(), outcomes };
             on_grades(&grades);
             grades
@@ -190,17 +195,17 @@ fn prepare(case: &GradedCase, renderer: Option<&Renderer>) -> Prepared {
                 Ok(Rendered { image, settings }) => (Ok(ReferenceImage::rendered(&image)), Some(settings)),
                 Err(e) => (Err(e), None),
             };
-            Prepared { image, settings, file: ("reference scene", scene.clone()) }
+            Prepared { image, variants: OnceCell::new(), settings, file: ("reference scene", scene.clone()) }
         }
         Reference::File(file) => {
             let read = image_io::read(file).map_err(|e| e.to_string());
             let settings = read.as_ref().ok().map(|r| format!("reference image, {}x{}", r.width, r.height));
-            Prepared { image: read.map(ReferenceImage::Read), settings, file: ("reference", file.clone()) }
+            Prepared { image: read.map(ReferenceImage::Read), variants: OnceCell::new(), settings, file: ("reference", file.clone()) }
         }
     }
 }
 
-fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_images: bool) -> Outcome {
+fn grade_one(case: &GradedCase, prepared: &Prepared, renderer: Option<&Renderer>, student: &Student, report_images: bool) -> Outcome {
     let image = student.dir.join(case.image.replace(STUDENT_PLACEHOLDER, &student.name));
     let mut outcome = Outcome {
         name: case.name.clone(),
@@ -236,8 +241,25 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_i
     outcome.status = if comparison.passed() { Status::Passed } else { Status::Mismatch };
     outcome.points = Some(Points { earned: case.scoring.earned(comparison.verdict.as_ref()), possible: case.scoring.points });
     outcome.detail = comparison.detail;
+    if outcome.status == Status::Mismatch && comparison.verdict.is_some() {
+        let variants = prepared.variants.get_or_init(|| diagnosis_variants(case, reference, renderer));
+        if let Some(diagnosis) = diagnose(&submitted, format, reference.linear(format), variants) {
+            outcome.detail += &format!("; {}", diagnosis.sentence());
+        }
+    }
     outcome.images = comparison.images;
     outcome
+}
+
+/// The case's variants for diagnosis: a rendered scene's, or none. A variant
+/// that cannot be rendered only loses the diagnosis, not the grade.
+fn diagnosis_variants(case: &GradedCase, reference: &ReferenceImage, renderer: Option<&Renderer>) -> Vec<Variant> {
+    match (&case.reference, reference, renderer) {
+        (Reference::Scene(scene), ReferenceImage::Rendered { image, .. }, Some(renderer)) if case.render.view.is_none_or(|v| v == ViewName::Shaded) => {
+            variants(renderer, scene, &case.render, image).unwrap_or_default()
+        }
+        _ => Vec::new(),
+    }
 }
 
 #[cfg(test)]

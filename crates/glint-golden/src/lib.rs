@@ -9,6 +9,7 @@ mod case_render;
 mod class_report;
 mod comparison;
 mod criteria;
+mod diagnosis;
 mod diff_map;
 mod font;
 mod gradescope;

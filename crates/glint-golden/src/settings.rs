@@ -32,6 +32,12 @@ pub struct RenderSettings {
     pub exposure: Option<Checked<PositiveFinite>>,
     pub tone_map: Option<ToneMapName>,
     pub nff_angle: Option<NffAngleName>,
+    /// Trace shadow rays (default: the scene's setting).
+    pub shadows: Option<bool>,
+    /// Trace reflected rays (default: the scene's setting).
+    pub reflection: Option<bool>,
+    /// Trace refracted rays (default: the scene's setting).
+    pub refraction: Option<bool>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
@@ -114,6 +120,9 @@ impl RenderSettings {
             exposure: over.exposure.or(self.exposure),
             tone_map: over.tone_map.or(self.tone_map),
             nff_angle: over.nff_angle.or(self.nff_angle),
+            shadows: over.shadows.or(self.shadows),
+            reflection: over.reflection.or(self.reflection),
+            refraction: over.refraction.or(self.refraction),
         }
     }
 }
