@@ -24,8 +24,9 @@ mod region;
 mod runner;
 mod scoring;
 mod settings;
+mod submission_folder;
 
-pub use class_report::write_class_report;
+pub use class_report::{remove_former_students, write_class_report};
 pub use comparison::{Png, ReportImages};
 pub use criteria::{judge, number, percent, Criteria, Verdict, Worst};
 pub use diff_map::diff_map;
@@ -38,3 +39,4 @@ pub use manifest::{Case, Suite};
 pub use metrics::{measure, Measurement, Metric, SizeMismatch};
 pub use region::Region;
 pub use runner::{run, Bless, Outcome, Points, RunOptions, Status, Summary};
+pub use settings::Visibility;

@@ -78,6 +78,29 @@ pub enum NffAngleName {
     Edges,
 }
 
+/// When Gradescope shows a graded case's test to the student, its
+/// `visibility` in results.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Visibility {
+    Visible,
+    Hidden,
+    AfterDueDate,
+    AfterPublished,
+}
+
+impl Visibility {
+    /// The name as a manifest and Gradescope write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Visibility::Visible => "visible",
+            Visibility::Hidden => "hidden",
+            Visibility::AfterDueDate => "after_due_date",
+            Visibility::AfterPublished => "after_published",
+        }
+    }
+}
+
 #[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CompareSettings {
@@ -343,5 +366,19 @@ mod tests {
             let e = toml::from_str::<CompareSettings>(text).unwrap_err().to_string();
             assert!(e.contains(needle), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn visibilities_read_back_as_gradescope_names_them() {
+        #[derive(Debug, serde::Deserialize)]
+        struct Case {
+            visibility: Visibility,
+        }
+        for visibility in [Visibility::Visible, Visibility::Hidden, Visibility::AfterDueDate, Visibility::AfterPublished] {
+            let read: Case = toml::from_str(&format!("visibility = \"{}\"", visibility.name())).unwrap();
+            assert_eq!(read.visibility, visibility);
+        }
+        let e = toml::from_str::<Case>("visibility = \"secret\"").unwrap_err().to_string();
+        assert!(e.contains("unknown variant `secret`"), "{e}");
     }
 }
