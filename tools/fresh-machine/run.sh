@@ -21,9 +21,13 @@ if [ ! -x "$dir/bin/bash" ]; then
   cp /etc/apt/sources.list.d/debian.sources "$dir/etc/apt/sources.list.d/" 2>/dev/null || true
 fi
 if dpkg-query -W -f='${Version}' nodejs 2>/dev/null | grep -q nodesource \
-    && ! chroot "$dir" dpkg-query -W nodejs >/dev/null 2>&1; then
-  (cd "$dir/tmp" && dpkg-repack nodejs >/dev/null)
-  chroot "$dir" sh -c 'dpkg -i /tmp/nodejs_*.deb && rm /tmp/nodejs_*.deb'
+    && ! chroot "$dir" dpkg-query -W -f='${Status}' nodejs 2>/dev/null | grep -q "ok installed"; then
+  (cd "$dir/tmp" && dpkg-repack nodejs >/dev/null 2>&1)
+  chroot "$dir" sh -c 'apt-get update -qq && apt-get install -y -qq /tmp/nodejs_*.deb >/dev/null && rm /tmp/nodejs_*.deb'
+  # NodeSource's npm updates itself in place, so the repacked package may
+  # miss files: the host's node and npm as they are.
+  cp -a /usr/lib/node_modules/. "$dir/usr/lib/node_modules/"
+  cp -a /usr/bin/node /usr/bin/npm /usr/bin/npx "$dir/usr/bin/"
 fi
 
 mounted=()
