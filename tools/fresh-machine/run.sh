@@ -39,7 +39,10 @@ bind /sys /sys
 bind /dev /dev
 bind /dev/pts /dev/pts
 bind "$HOME/.rustup" /root/.rustup
+# The network as the host has it: its resolver and its certificate
+# authorities (a proxy in between may sign with its own).
 cp /etc/resolv.conf "$dir/etc/resolv.conf"
+cp /etc/ssl/certs/ca-certificates.crt "$dir/etc/ssl/certs/ca-certificates.crt"
 mkdir -p "$dir/root/.cargo/bin"
 cp -a "$HOME/.cargo/bin/." "$dir/root/.cargo/bin/"
 
