@@ -8,7 +8,7 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct StitchArgs {
-    /// The parts (.png, .exr or .pfm, each with the PART.json that `glint render
+    /// The parts (.png, .ppm, .exr or .pfm, each with the PART.json that `glint render
     /// --region/--shard` writes beside it), in any order
     #[arg(required = true)]
     parts: Vec<PathBuf>,

@@ -16,6 +16,7 @@ pub mod kernel_dump;
 mod lavapipe;
 mod output;
 mod pipelines;
+mod ppm;
 pub mod primitive_dispatch;
 pub mod probe;
 mod profile;
@@ -39,9 +40,10 @@ pub use eye_tiles::binning::Footprints;
 pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
 pub use frame::{Acceleration, Prepared};
 pub use output::{
-    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
-    OutputPathError, PngBits,
+    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Bits, Channels, Format,
+    Image, OutputPathError, Samples,
 };
+pub use ppm::{read_ppm, Ppm, PpmForm};
 pub use glint_encoding::RayStats;
 pub use readback::Readback;
 pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
