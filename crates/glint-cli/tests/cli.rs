@@ -380,7 +380,8 @@ fn ppm_output_holds_the_samples_of_the_png_of_the_same_render() {
     let p = |name: &str| dir.path().join(name).display().to_string();
     let scene = scenes().join("showcase.toml");
     let render = |out: &str, extra: &[&str]| {
-        let args = [&["render", scene.to_str().unwrap(), "-o", &p(out), "--width", "40", "--height", "30", "-q"][..], extra].concat();
+        let path = p(out);
+        let args = [&["render", scene.to_str().unwrap(), "-o", &path, "--width", "40", "--height", "30", "-q"][..], extra].concat();
         let o = glint(&args);
         assert!(o.status.success(), "{args:?}: {}", stderr(&o));
         std::fs::read(p(out)).unwrap()
