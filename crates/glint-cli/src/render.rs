@@ -9,7 +9,7 @@ use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
 use glint_gpu::{
-    Acceleration, Bits, CompiledKernels, Format, Gpu, ImageSink, PpmForm, Prepared, RayStats, Region, RenderOptions, Renderer, Samples, StagedImage,
+    Acceleration, Bits, CompiledKernels, Format, Gpu, GpuError, ImageSink, PpmForm, Prepared, RayStats, Region, RenderOptions, Renderer, Samples, StagedImage,
     ToneMap,
 };
 use glint_scene::MAX_DEPTH_LIMIT;
@@ -429,9 +429,9 @@ fn render_frame(
         staged.push((render_to_file(renderer, &prepared.buffers, region, &aov_options, &path, samples, &mut |_, _| {})?.0, path));
     }
     for (file, path) in staged {
-        file.commit()?;
+        file.commit().map_err(GpuError::from)?;
         if let Some(placement) = &part {
-            glint_gpu::stitch::write_placement(&path, placement)?;
+            glint_gpu::stitch::write_placement(&path, placement).map_err(GpuError::from)?;
         }
     }
     Ok((stats, summary))
@@ -449,14 +449,15 @@ fn render_to_file(
     samples: Samples,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<(StagedImage, RayStats, crate::legend::Summary), Failure> {
-    let mut sink = ImageSink::create(path, region.width(), region.height(), samples, crate::legend::channels(options.view))?;
+    let mut sink =
+        ImageSink::create(path, region.width(), region.height(), samples, crate::legend::channels(options.view)).map_err(GpuError::from)?;
     let mut summary = crate::legend::Summary::new(options.view);
     let stats = renderer.render_tiles(buffers, region, options, progress, &mut |tile, pixels| {
         let pixels = if options.view == View::Depth { pixels.with_misses_at_infinity() } else { pixels };
         summary.add(&pixels);
-        sink.paste(&pixels, tile.x0 - region.x0, tile.y0 - region.y0)
+        sink.paste(&pixels, tile.x0 - region.x0, tile.y0 - region.y0).map_err(GpuError::from)
     })?;
-    Ok((sink.finish()?, stats, summary))
+    Ok((sink.finish().map_err(GpuError::from)?, stats, summary))
 }
 
 fn progress_bar(quiet: bool) -> ProgressBar {

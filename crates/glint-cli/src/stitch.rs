@@ -22,7 +22,7 @@ pub struct StitchArgs {
 
 pub fn run(args: &StitchArgs) -> Result<(), Failure> {
     crate::render::check_output(&args.output)?;
-    let (width, height) = glint_gpu::stitch::stitch(&args.parts, &args.output).map_err(|e| match e {
+    let (width, height) = glint_gpu::stitch::stitch(&args.parts, &args.output).map_err(|e| match glint_gpu::GpuError::from(e) {
         glint_gpu::GpuError::Stitch(m) => Failure::new(exit::INPUT, m),
         other => Failure::from(other),
     })?;

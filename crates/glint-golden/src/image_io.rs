@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use glint_gpu::Format;
+use glint_image::Format;
 
 /// Linear RGB pixels, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,12 +56,12 @@ fn decode(bytes: &[u8], format: Format) -> Result<LinearImage, String> {
             Err(e) => single_channel_exr(bytes).ok_or(e),
         },
         Format::Ppm => {
-            let ppm = glint_gpu::read_ppm(bytes)?;
+            let ppm = glint_image::read_ppm(bytes)?;
             let pixels = ppm.display_values().map(srgb_to_linear).collect::<Vec<_>>().chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
             Ok(LinearImage { width: ppm.width, height: ppm.height, pixels })
         }
         Format::Pfm => {
-            let (width, height, pixels) = glint_gpu::read_pfm(bytes)?;
+            let (width, height, pixels) = glint_image::read_pfm(bytes)?;
             Ok(LinearImage { width, height, pixels })
         }
     }
@@ -71,7 +71,7 @@ fn decode(bytes: &[u8], format: Format) -> Result<LinearImage, String> {
 /// are one number per pixel (depth, id, heatmap): that number in R, G and B,
 /// as a greyscale PFM reads.
 fn single_channel_exr(bytes: &[u8]) -> Option<LinearImage> {
-    let (width, height, channels) = glint_gpu::read_exr_channels(bytes).ok()?;
+    let (width, height, channels) = glint_image::read_exr_channels(bytes).ok()?;
     let [(_, values)] = &channels[..] else { return None };
     Some(LinearImage { width, height, pixels: values.iter().map(|&v| [v; 3]).collect() })
 }
@@ -86,7 +86,7 @@ impl LinearImage {
     /// A render as it reads back once written in `format`: PNG and PPM store
     /// the display values at 8 bits, EXR and PFM the linear values exactly. A
     /// render compared this way gives the same numbers as its file would.
-    pub fn from_render(image: &glint_gpu::Image, format: Format) -> Self {
+    pub fn from_render(image: &glint_image::Image, format: Format) -> Self {
         let pixels = match format {
             Format::Png | Format::Ppm => image.to_rgb8().pixels().map(|p| p.0.map(|c| srgb_to_linear(f32::from(c) / 255.0))).collect(),
             Format::Exr | Format::Pfm => image.linear.iter().map(|p| [p[0], p[1], p[2]]).collect(),
@@ -143,7 +143,7 @@ mod tests {
 
     #[test]
     fn float_formats_keep_linear_values() {
-        let render = glint_gpu::Image {
+        let render = glint_image::Image {
             width: 2,
             height: 1,
             display: vec![[1.0, 1.0, 1.0, 1.0]; 2],
@@ -152,7 +152,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for name in ["r.exr", "r.pfm"] {
             let path = dir.path().join(name);
-            glint_gpu::write_image(&render, &path, glint_gpu::Bits::Eight).unwrap();
+            glint_image::write_image(&render, &path, glint_image::Bits::Eight).unwrap();
             let read_back = read(&path).unwrap();
             assert_eq!(read_back.pixels, vec![[0.25, 2.5, 0.0], [1e-3, 0.5, 7.0]], "{name}");
             assert_eq!(read_back, LinearImage::from_render(&render, format_of(&path).unwrap()), "{name}");
@@ -161,7 +161,7 @@ mod tests {
 
     #[test]
     fn one_channel_files_read_as_grey() {
-        let render = glint_gpu::Image {
+        let render = glint_image::Image {
             width: 3,
             height: 1,
             display: vec![[0.0; 4]; 3],
@@ -170,7 +170,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for name in ["z.exr", "z.pfm"] {
             let path = dir.path().join(name);
-            glint_gpu::write_image_channels(&render, &path, glint_gpu::Bits::Eight.into(), glint_gpu::Channels::Single("Z")).unwrap();
+            glint_image::write_image_channels(&render, &path, glint_image::Bits::Eight.into(), glint_image::Channels::Single("Z")).unwrap();
             assert_eq!(read(&path).unwrap().pixels, vec![[1.5; 3], [f32::INFINITY; 3], [-1.0; 3]], "{name}");
         }
     }
@@ -200,7 +200,7 @@ mod tests {
 
     #[test]
     fn a_render_compares_as_its_png_would_read() {
-        let render = glint_gpu::Image {
+        let render = glint_image::Image {
             width: 1,
             height: 2,
             display: vec![[0.5, 0.25, 1.0, 1.0], [0.0, 0.999, 0.1, 1.0]],
@@ -209,7 +209,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for (name, format) in [("r.png", Format::Png), ("r.ppm", Format::Ppm)] {
             let path = dir.path().join(name);
-            glint_gpu::write_image(&render, &path, glint_gpu::Bits::Eight).unwrap();
+            glint_image::write_image(&render, &path, glint_image::Bits::Eight).unwrap();
             assert_eq!(read(&path).unwrap(), LinearImage::from_render(&render, format), "{name}");
         }
     }

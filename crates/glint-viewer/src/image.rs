@@ -283,7 +283,7 @@ impl TracedImage {
             Some(canvas) if self.canvas_is_current(doc) => canvas
                 .renderer()
                 .resolve(&canvas.prepared.buffers, &settings.present_options(canvas))
-                .and_then(|image| glint_gpu::write_image(&image, path, Bits::Eight).map(|()| image)),
+                .and_then(|image| glint_gpu::write_image(&image, path, Bits::Eight).map(|()| image).map_err(GpuError::from)),
             _ => Err(GpuError::Output("there is no image to save yet".into())),
         }
     }

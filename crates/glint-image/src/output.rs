@@ -5,7 +5,7 @@ use std::path::Path;
 
 use crate::ppm::PpmForm;
 use crate::sink::ImageSink;
-use crate::GpuError;
+use crate::ImageError;
 
 /// A rendered image, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,13 +33,13 @@ pub enum Format {
 }
 
 impl Format {
-    pub fn from_path(path: &Path) -> Result<Self, GpuError> {
+    pub fn from_path(path: &Path) -> Result<Self, ImageError> {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("png") => Ok(Format::Png),
             Some("ppm") => Ok(Format::Ppm),
             Some("exr") => Ok(Format::Exr),
             Some("pfm") => Ok(Format::Pfm),
-            _ => Err(GpuError::Output(format!(
+            _ => Err(ImageError::Output(format!(
                 "{}: unsupported output format: use {}",
                 path.display(),
                 Format::EXTENSIONS
@@ -149,13 +149,13 @@ pub enum Channels {
 
 /// Writes `image` to `path` in the format its extension names, atomically
 /// (see [`ImageSink`]).
-pub fn write_image(image: &Image, path: &Path, bits: Bits) -> Result<(), GpuError> {
+pub fn write_image(image: &Image, path: &Path, bits: Bits) -> Result<(), ImageError> {
     write_image_channels(image, path, bits.into(), Channels::Rgb)
 }
 
 /// [`write_image`], with display formats written with `samples` and float
 /// formats with `channels`.
-pub fn write_image_channels(image: &Image, path: &Path, samples: Samples, channels: Channels) -> Result<(), GpuError> {
+pub fn write_image_channels(image: &Image, path: &Path, samples: Samples, channels: Channels) -> Result<(), ImageError> {
     let mut sink = ImageSink::create(path, image.width, image.height, samples, channels)?;
     sink.paste(image, 0, 0)?;
     sink.finish()?.commit()

@@ -17,7 +17,7 @@ use tempfile::TempPath;
 
 use crate::output::{temp_beside, to_u16, to_u8, Bits, Channels, Format, Image, Samples};
 use crate::ppm::{self, PpmForm};
-use crate::GpuError;
+use crate::ImageError;
 
 /// An image file of `width` × `height` being written, tile by tile.
 pub struct ImageSink {
@@ -86,10 +86,10 @@ impl ImageSink {
     /// Starts the file for `path`, in the format its extension names: display
     /// values as `samples` says for PNG and PPM, linear values with `channels`
     /// for EXR and PFM.
-    pub fn create(path: &Path, width: u32, height: u32, samples: Samples, channels: Channels) -> Result<Self, GpuError> {
+    pub fn create(path: &Path, width: u32, height: u32, samples: Samples, channels: Channels) -> Result<Self, ImageError> {
         let Samples { bits, ppm: form } = samples;
         let format = Format::from_path(path)?;
-        let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
+        let fail = |e: &dyn std::fmt::Display| ImageError::Output(format!("{}: {e}", path.display()));
         let (file, temp) = temp_beside(path).map_err(|e| fail(&e))?.into_parts();
         let pixels = match format {
             Format::Png => {
@@ -126,7 +126,7 @@ impl ImageSink {
     /// Copies `tile` into the image with its top-left corner at (`x`, `y`).
     /// Tiles may come in any order but must not overlap; PNG and PPM rows are written
     /// as soon as they and all rows above them are complete.
-    pub fn paste(&mut self, tile: &Image, x: u32, y: u32) -> Result<(), GpuError> {
+    pub fn paste(&mut self, tile: &Image, x: u32, y: u32) -> Result<(), ImageError> {
         if x + tile.width > self.width || y + tile.height > self.height {
             return Err(self.error(format!("a {}x{} tile at ({x}, {y}) is outside the image", tile.width, tile.height)));
         }
@@ -161,9 +161,9 @@ impl ImageSink {
 
     /// Completes the file under its temporary name, on disk; it appears at
     /// its path when the result is committed.
-    pub fn finish(self) -> Result<StagedImage, GpuError> {
+    pub fn finish(self) -> Result<StagedImage, ImageError> {
         let Self { path, temp, width, height, pasted, pixels } = self;
-        let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
+        let fail = |e: &dyn std::fmt::Display| ImageError::Output(format!("{}: {e}", path.display()));
         let total = u64::from(width) * u64::from(height);
         if pasted != total {
             return Err(fail(&format!("only {pasted} of the image's {total} pixels were rendered")));
@@ -200,8 +200,8 @@ impl ImageSink {
         Ok(StagedImage { path, temp })
     }
 
-    fn error(&self, message: String) -> GpuError {
-        GpuError::Output(format!("{}: {message}", self.path.display()))
+    fn error(&self, message: String) -> ImageError {
+        ImageError::Output(format!("{}: {message}", self.path.display()))
     }
 }
 
@@ -269,8 +269,8 @@ pub struct StagedImage {
 
 impl StagedImage {
     /// Renames the file to its path, replacing any file there.
-    pub fn commit(self) -> Result<(), GpuError> {
-        self.temp.persist(&self.path).map_err(|e| GpuError::Output(format!("{}: {}", self.path.display(), e.error)))
+    pub fn commit(self) -> Result<(), ImageError> {
+        self.temp.persist(&self.path).map_err(|e| ImageError::Output(format!("{}: {}", self.path.display(), e.error)))
     }
 }
 

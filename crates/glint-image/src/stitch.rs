@@ -11,7 +11,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::output::{write_atomically, Bits, Channels, Format, Image, Samples};
-use crate::{read_pfm_channels, read_ppm, GpuError, ImageSink, PpmForm, Region};
+use crate::{read_pfm_channels, read_ppm, ImageError, ImageSink, PpmForm, Region};
 
 /// Where a part belongs: in an image of `width` × `height`, at `region`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,7 +32,7 @@ pub fn placement_path(image: &Path) -> PathBuf {
 }
 
 /// Records, atomically, that the part at `image` holds `placement`.
-pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), GpuError> {
+pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), ImageError> {
     let path = placement_path(image);
     let Region { x0, y0, x1, y1 } = placement.region;
     let shard = placement.shard.map_or(String::new(), |(index, count)| format!(", \"shard\": [{index}, {count}]"));
@@ -40,7 +40,7 @@ pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), GpuErr
         "{{\"glint_part\": 1, \"image\": [{}, {}], \"region\": [{x0}, {y0}, {x1}, {y1}]{shard}}}\n",
         placement.width, placement.height
     );
-    write_atomically(&path, text.as_bytes()).map_err(|e| GpuError::Output(format!("{}: {e}", path.display())))
+    write_atomically(&path, text.as_bytes()).map_err(|e| ImageError::Output(format!("{}: {e}", path.display())))
 }
 
 /// The placement recorded beside the part at `image`.
@@ -130,9 +130,9 @@ struct Part {
 /// `output` (the parts' format), and returns its width and height. The parts
 /// must be of one image, stored alike, and cover it exactly once; each
 /// problem is one line naming a file.
-pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> {
-    let parts: Vec<Part> = parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>().map_err(GpuError::Stitch)?;
-    let first = parts.first().ok_or_else(|| GpuError::Stitch("no parts to stitch".into()))?;
+pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), ImageError> {
+    let parts: Vec<Part> = parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>().map_err(ImageError::Stitch)?;
+    let first = parts.first().ok_or_else(|| ImageError::Stitch("no parts to stitch".into()))?;
     let (width, height, encoding) = (first.placement.width, first.placement.height, first.encoding);
     let wanted = Format::from_path(output)?;
     let format_of = |e: Encoding| match e {
@@ -140,7 +140,7 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
     };
     if format_of(encoding) != wanted {
         let extension = format!("{:?}", format_of(encoding)).to_ascii_lowercase();
-        return Err(GpuError::Stitch(format!(
+        return Err(ImageError::Stitch(format!(
             "{}: the parts are .{extension} files and stitching keeps their format: name the output .{extension}",
             output.display()
         )));
@@ -148,7 +148,7 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
     for part in &parts {
         let shown = part.path.display();
         if (part.placement.width, part.placement.height) != (width, height) {
-            return Err(GpuError::Stitch(format!(
+            return Err(ImageError::Stitch(format!(
                 "{shown}: is a part of a {}x{} image, but {} is a part of a {width}x{height} one",
                 part.placement.width,
                 part.placement.height,
@@ -156,7 +156,7 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
             )));
         }
         if part.encoding != encoding {
-            return Err(GpuError::Stitch(format!(
+            return Err(ImageError::Stitch(format!(
                 "{shown}: is {}, but {} is {encoding}",
                 part.encoding,
                 first.path.display()
@@ -181,11 +181,11 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
 
 /// Checks that the parts' regions cover the `width` × `height` image exactly
 /// once: no two share a pixel and none is missing.
-fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), GpuError> {
+fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), ImageError> {
     for (i, a) in parts.iter().enumerate() {
         for b in &parts[i + 1..] {
             if a.placement.region.overlaps(&b.placement.region) {
-                return Err(GpuError::Stitch(format!(
+                return Err(ImageError::Stitch(format!(
                     "{} (region {}) and {} (region {}) overlap",
                     a.path.display(),
                     a.placement.region,
@@ -199,7 +199,7 @@ fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), GpuErro
     if let Some((x, y)) = first_uncovered(&regions, width, height) {
         let covered: u64 = regions.iter().map(Region::pixels).sum();
         let missing = u64::from(width) * u64::from(height) - covered;
-        return Err(GpuError::Stitch(format!(
+        return Err(ImageError::Stitch(format!(
             "the parts leave {missing} pixels of the {width}x{height} image uncovered, the first at ({x}, {y}): {}",
             missing_shards(parts).unwrap_or_else(|| "a part is missing".into())
         )));
