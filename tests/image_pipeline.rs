@@ -4,7 +4,7 @@ mod support;
 
 use glam::DVec3;
 use glint_encoding::gpu_types::{Filter, View};
-use glint_gpu::{Acceleration, PngBits, RenderOptions};
+use glint_gpu::{Acceleration, Bits, RenderOptions};
 use support::{parse, render_options};
 
 /// A white sphere on black, ambient only: a hard silhouette to anti-alias.
@@ -69,7 +69,7 @@ fn the_same_seed_gives_identical_bytes() {
     for (i, seed) in [7, 7, 8].into_iter().enumerate() {
         let (image, _) = render_options(&scene, Acceleration::Bvh, options(4, seed, Filter::Tent));
         let path = dir.path().join(format!("{i}.png"));
-        glint_gpu::write_image(&image, &path, PngBits::Eight).unwrap();
+        glint_gpu::write_image(&image, &path, Bits::Eight).unwrap();
         files.push(std::fs::read(&path).unwrap());
     }
     assert_eq!(files[0], files[1], "same seed, different bytes");
@@ -166,20 +166,20 @@ fn pfm_and_exr_round_trip_the_linear_values() {
     };
     let dir = tempfile::tempdir().unwrap();
     let pfm = dir.path().join("x.pfm");
-    glint_gpu::write_image(&image, &pfm, PngBits::Eight).unwrap();
+    glint_gpu::write_image(&image, &pfm, Bits::Eight).unwrap();
     let (w, h, rgb) = glint_gpu::read_pfm(&std::fs::read(&pfm).unwrap()).unwrap();
     assert_eq!((w, h), (48, 48));
     for (a, b) in rgb.iter().zip(&image.linear) {
         assert_eq!(*a, [b[0], b[1], b[2]]);
     }
     let exr = dir.path().join("x.exr");
-    glint_gpu::write_image(&image, &exr, PngBits::Eight).unwrap();
+    glint_gpu::write_image(&image, &exr, Bits::Eight).unwrap();
     let back = image::open(&exr).unwrap().to_rgb32f();
     assert_eq!(back.dimensions(), (48, 48));
     for (a, b) in back.pixels().zip(&image.linear) {
         assert_eq!(a.0, [b[0], b[1], b[2]]);
     }
     let png16 = dir.path().join("x.png");
-    glint_gpu::write_image(&image, &png16, PngBits::Sixteen).unwrap();
+    glint_gpu::write_image(&image, &png16, Bits::Sixteen).unwrap();
     assert_eq!(image::open(&png16).unwrap().color(), image::ColorType::Rgb16);
 }

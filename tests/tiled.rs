@@ -7,7 +7,7 @@ mod support;
 
 use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Channels, Image, ImageSink, PngBits, RayStats, Region, RenderOptions, Renderer};
+use glint_gpu::{Acceleration, Bits, Channels, Image, ImageSink, RayStats, Region, RenderOptions, Renderer};
 use support::{gpu, parse, renderer};
 
 fn showcase(width: u32, height: u32) -> glint_scene::Scene {
@@ -63,7 +63,7 @@ fn tiles_stream_into_a_png_that_holds_one_band_of_rows() {
     let options = RenderOptions { spp: 2, ..RenderOptions::default() };
     let dir = tempfile::tempdir().unwrap();
     let (streamed, untiled) = (dir.path().join("streamed.png"), dir.path().join("untiled.png"));
-    let mut sink = ImageSink::create(&streamed, width, height, PngBits::Eight, Channels::Rgb).unwrap();
+    let mut sink = ImageSink::create(&streamed, width, height, Bits::Eight.into(), Channels::Rgb).unwrap();
     let mut held = 0;
     let region = Region::whole(width, height);
     tiled
@@ -77,7 +77,7 @@ fn tiles_stream_into_a_png_that_holds_one_band_of_rows() {
     let band = width as usize * 4 * 3;
     assert!(held <= band + 4 * 4, "{held} bytes held, a band of 4 rows is {band}");
     let (image, _) = render(renderer(), &scene, None, options);
-    glint_gpu::write_image(&image, &untiled, PngBits::Eight).unwrap();
+    glint_gpu::write_image(&image, &untiled, Bits::Eight).unwrap();
     assert!(std::fs::read(&streamed).unwrap() == std::fs::read(&untiled).unwrap(), "the files differ");
 }
 

@@ -10,7 +10,7 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct CompareArgs {
-    /// The reference image: .png (read as sRGB), .exr or .pfm (linear)
+    /// The reference image: .png or .ppm (read as sRGB), .exr or .pfm (linear)
     reference: PathBuf,
     /// The image checked against it, of the same size
     test: PathBuf,

@@ -68,7 +68,7 @@ enum Command {
     /// Follow one pixel's rays: the camera frame and the whole ray tree with every term it adds
     /// (with --observer, also drawn in 3-D as seen from outside, into a PNG).
     Probe(probe::ProbeArgs),
-    /// Compare two images (.png, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
+    /// Compare two images (.png, .ppm, .exr, .pfm) by FLIP, PSNR, RMSE or largest difference.
     Compare(compare::CompareArgs),
     /// Render a suite of scenes and compare each with its golden image, or grade students' images.
     Test(test::TestArgs),

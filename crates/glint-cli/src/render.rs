@@ -9,7 +9,8 @@ use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
 use glint_gpu::{
-    Acceleration, CompiledKernels, Format, Gpu, ImageSink, PngBits, Prepared, RayStats, Region, RenderOptions, Renderer, StagedImage, ToneMap,
+    Acceleration, Bits, CompiledKernels, Format, Gpu, GpuError, ImageSink, PpmForm, Prepared, RayStats, Region, RenderOptions, Renderer, Samples, StagedImage,
+    ToneMap,
 };
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::MAX_IMAGE_SIDE;
@@ -22,7 +23,7 @@ pub struct RenderArgs {
     /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE] for a generated SPD scene
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: PathBuf,
-    /// Output image: .png (display values), .exr or .pfm (linear float)
+    /// Output image: .png or .ppm (sRGB display values), .exr or .pfm (linear float)
     #[arg(short, long)]
     output: PathBuf,
     /// Image width in pixels (default: the scene's; alone, the scene's aspect ratio is kept)
@@ -69,9 +70,13 @@ pub struct RenderArgs {
     /// normal, albedo, id and PATH a .pfm or .exr file (repeatable)
     #[arg(long, value_name = "NAME=PATH", value_parser = parse_aov)]
     aov: Vec<(ViewArg, PathBuf)>,
-    /// Bits per channel of PNG output
+    /// Bits per channel of PNG and PPM output
     #[arg(long, value_enum, default_value_t = BitsArg::Eight)]
     bits: BitsArg,
+    /// Write a .ppm output as plain PPM (P3: the samples as decimal text)
+    /// rather than raw (P6: bytes), as Netpbm's -plain does
+    #[arg(long)]
+    plain: bool,
     /// Multiply linear radiance by this before tone mapping
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true, value_parser = finite_positive)]
     exposure: f32,
@@ -282,6 +287,9 @@ fn option_warnings(args: &RenderArgs) -> Vec<String> {
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     // Refuse an output path that cannot be written before doing any work.
     check_output(&args.output)?;
+    if args.plain && Format::from_path(&args.output).ok() != Some(Format::Ppm) {
+        return Err(Failure::new(exit::USAGE, format!("--plain: it writes a plain PPM (P3), but {} is not a .ppm", args.output.display())));
+    }
     for (_, path) in &args.aov {
         check_output(path)?;
     }
@@ -408,24 +416,25 @@ fn render_frame(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<(RayStats, crate::legend::Summary), Failure> {
     let bits = match args.bits {
-        BitsArg::Eight => PngBits::Eight,
-        BitsArg::Sixteen => PngBits::Sixteen,
+        BitsArg::Eight => Bits::Eight,
+        BitsArg::Sixteen => Bits::Sixteen,
     };
+    let samples = Samples { bits, ppm: if args.plain { PpmForm::Plain } else { PpmForm::Raw } };
     let (width, height) = (prepared.buffers.width(), prepared.buffers.height());
     let part = (region != Region::whole(width, height)).then_some(Placement { width, height, region, shard: args.shard });
     let output = paths(&args.output);
-    let (main, stats, summary) = render_to_file(renderer, &prepared.buffers, region, options, &output, bits, progress)?;
+    let (main, stats, summary) = render_to_file(renderer, &prepared.buffers, region, options, &output, samples, progress)?;
     let mut staged = vec![(main, output)];
     for (aov, path) in &args.aov {
         let aov_view = aov.view();
         let aov_options = RenderOptions { view: aov_view, spp: 1, view_scale: prepared.view_scale(aov_view), ..*options };
         let path = paths(path);
-        staged.push((render_to_file(renderer, &prepared.buffers, region, &aov_options, &path, bits, &mut |_, _| {})?.0, path));
+        staged.push((render_to_file(renderer, &prepared.buffers, region, &aov_options, &path, samples, &mut |_, _| {})?.0, path));
     }
     for (file, path) in staged {
-        file.commit()?;
+        file.commit().map_err(GpuError::from)?;
         if let Some(placement) = &part {
-            glint_gpu::stitch::write_placement(&path, placement)?;
+            glint_gpu::stitch::write_placement(&path, placement).map_err(GpuError::from)?;
         }
     }
     Ok((stats, summary))
@@ -440,17 +449,18 @@ fn render_to_file(
     region: Region,
     options: &RenderOptions,
     path: &Path,
-    bits: PngBits,
+    samples: Samples,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<(StagedImage, RayStats, crate::legend::Summary), Failure> {
-    let mut sink = ImageSink::create(path, region.width(), region.height(), bits, crate::legend::channels(options.view))?;
+    let mut sink =
+        ImageSink::create(path, region.width(), region.height(), samples, crate::legend::channels(options.view)).map_err(GpuError::from)?;
     let mut summary = crate::legend::Summary::new(options.view);
     let stats = renderer.render_tiles(buffers, region, options, progress, &mut |tile, pixels| {
         let pixels = if options.view == View::Depth { pixels.with_misses_at_infinity() } else { pixels };
         summary.add(&pixels);
-        sink.paste(&pixels, tile.x0 - region.x0, tile.y0 - region.y0)
+        sink.paste(&pixels, tile.x0 - region.x0, tile.y0 - region.y0).map_err(GpuError::from)
     })?;
-    Ok((sink.finish()?, stats, summary))
+    Ok((sink.finish().map_err(GpuError::from)?, stats, summary))
 }
 
 fn progress_bar(quiet: bool) -> ProgressBar {

@@ -8,7 +8,7 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct StitchArgs {
-    /// The parts (.png, .exr or .pfm, each with the PART.json that `glint render
+    /// The parts (.png, .ppm, .exr or .pfm, each with the PART.json that `glint render
     /// --region/--shard` writes beside it), in any order
     #[arg(required = true)]
     parts: Vec<PathBuf>,
@@ -22,7 +22,7 @@ pub struct StitchArgs {
 
 pub fn run(args: &StitchArgs) -> Result<(), Failure> {
     crate::render::check_output(&args.output)?;
-    let (width, height) = glint_gpu::stitch::stitch(&args.parts, &args.output).map_err(|e| match e {
+    let (width, height) = glint_gpu::stitch::stitch(&args.parts, &args.output).map_err(|e| match glint_gpu::GpuError::from(e) {
         glint_gpu::GpuError::Stitch(m) => Failure::new(exit::INPUT, m),
         other => Failure::from(other),
     })?;

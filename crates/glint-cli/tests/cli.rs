@@ -371,3 +371,52 @@ fn an_image_beyond_what_the_device_holds_at_once_renders_in_tiles() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(image::image_dimensions(&out).unwrap(), (4100, 2100));
 }
+
+/// A PPM holds the samples of the PNG of the same render, raw or plain, at 8
+/// or 16 bits, and `glint compare` finds no difference between the two.
+#[test]
+fn ppm_output_holds_the_samples_of_the_png_of_the_same_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name).display().to_string();
+    let scene = scenes().join("showcase.toml");
+    let render = |out: &str, extra: &[&str]| {
+        let path = p(out);
+        let args = [&["render", scene.to_str().unwrap(), "-o", &path, "--width", "40", "--height", "30", "-q"][..], extra].concat();
+        let o = glint(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        std::fs::read(p(out)).unwrap()
+    };
+    let samples_of = |png: &str| -> Vec<u16> {
+        match image::open(p(png)).unwrap() {
+            image::DynamicImage::ImageRgb8(rgb) => rgb.into_raw().into_iter().map(u16::from).collect(),
+            image::DynamicImage::ImageRgb16(rgb) => rgb.into_raw(),
+            other => panic!("{png}: {:?}", other.color()),
+        }
+    };
+    render("t.png", &[]);
+    render("t16.png", &["--bits", "16"]);
+    let cases: [(&str, &[&str], &str, &str); 4] = [
+        ("t.ppm", &[], "P6\n40 30\n255\n", "t.png"),
+        ("t16.ppm", &["--bits", "16"], "P6\n40 30\n65535\n", "t16.png"),
+        ("plain.ppm", &["--plain"], "P3\n40 30\n255\n", "t.png"),
+        ("plain16.ppm", &["--plain", "--bits", "16"], "P3\n40 30\n65535\n", "t16.png"),
+    ];
+    for (out, extra, header, png) in cases {
+        let bytes = render(out, extra);
+        assert!(bytes.starts_with(header.as_bytes()), "{out}: {:?}", String::from_utf8_lossy(&bytes[..20]));
+        let ppm = glint_gpu::read_ppm(&bytes).unwrap();
+        assert_eq!(ppm.samples, samples_of(png), "{out}");
+        if out == "t.ppm" {
+            assert!(bytes[header.len()..] == image::open(p(png)).unwrap().to_rgb8().into_raw()[..], "P6 holds the PNG's bytes");
+        }
+        let o = glint(&["compare", &p(png), &p(out), "--metric", "max", "--threshold", "0", "--json"]);
+        assert_eq!(o.status.code(), Some(0), "{out}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(v["max"], 0.0, "{out}: {v}");
+    }
+    // --plain is for PPM alone, and refused before any work.
+    let o = glint(&["render", scene.to_str().unwrap(), "-o", &p("x.png"), "--plain"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(stderr(&o), format!("glint: --plain: it writes a plain PPM (P3), but {} is not a .ppm\n", p("x.png")));
+    assert!(!dir.path().join("x.png").exists());
+}

@@ -1,6 +1,6 @@
 //! `glint compare` end to end: metrics against values worked out by hand,
-//! the worst pixel's position, the diff map, exit codes and one-line errors.
-//! Needs no GPU.
+//! the worst pixel's position, the diff map, exit codes and one-line errors,
+//! PPM read as PNG is. Needs no GPU.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -158,6 +158,67 @@ fn png_is_decoded_from_srgb_to_compare_with_linear_files() {
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
 }
 
+/// A PPM of `png`'s bytes, raw (P6) or plain (P3), with a comment in its header.
+fn ppm_of(png: &Path, name: &str, plain: bool) -> PathBuf {
+    let rgb = image::open(png).unwrap().to_rgb8();
+    let (width, height) = rgb.dimensions();
+    let mut bytes = format!("{}\n# by a student\n{width} {height}\n255\n", if plain { "P3" } else { "P6" }).into_bytes();
+    if plain {
+        for row in rgb.as_raw().chunks(width as usize * 3) {
+            let text: Vec<String> = row.iter().map(u8::to_string).collect();
+            bytes.extend(format!("{}\n", text.join(" ")).into_bytes());
+        }
+    } else {
+        bytes.extend(rgb.as_raw());
+    }
+    let path = png.with_file_name(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+#[test]
+fn a_ppm_compares_as_the_png_of_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = png(dir.path(), "a.png", 16, 8, |x, y| [(x * 16) as u8, (y * 30) as u8, 200]);
+    for (name, plain) in [("a.ppm", false), ("a-plain.ppm", true)] {
+        let ppm = ppm_of(&a, name, plain);
+        for pair in [[&a, &ppm], [&ppm, &a]] {
+            let o = glint(&["compare", arg(pair[0]), arg(pair[1]), "--metric", "max", "--threshold", "0", "--json"]);
+            assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+            assert_eq!(json(&o)["max"], 0.0, "{name}");
+        }
+    }
+    // A changed pixel is found in PPMs as in the PNGs of the same bytes.
+    let (a, b) = one_pixel_apart(dir.path());
+    let (pa, pb) = (ppm_of(&a, "pa.ppm", false), ppm_of(&b, "pb.ppm", true));
+    let pngs = json(&glint(&["compare", arg(&a), arg(&b), "--metric", "max", "--json"]));
+    let o = glint(&["compare", arg(&pa), arg(&pb), "--metric", "max", "--json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let ppms = json(&o);
+    assert_eq!((ppms["worst"]["x"].as_u64(), ppms["worst"]["y"].as_u64()), (Some(11), Some(7)), "{ppms}");
+    assert_eq!(ppms["max"], pngs["max"]);
+}
+
+#[test]
+fn bad_ppms_are_one_line_errors_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = png(dir.path(), "good.png", 2, 2, |_, _| [0; 3]);
+    let cases: [(&str, &[u8], &str); 5] = [
+        ("truncated.ppm", b"P6\n2 2\n255\n\x00\x00\x00", "truncated: the header promises 2x2 pixels (12 bytes of samples), but 3 bytes follow it"),
+        ("magic.ppm", b"P5\n2 2\n255\n\x00\x00\x00\x00", "not a PPM: it starts with P5, a PGM (greymap); a PPM starts with P6 or P3"),
+        ("maxval.ppm", b"P3\n2 2\n0\n", "line 3: the maxval is 0; it must be 1 to 65535"),
+        ("comment.ppm", b"P3\n2 2\n255\n0 0 0 # black\n0 0 0 0 0 0 0 0 0\n", "line 4: a comment among the pixel values: PPM allows comments only in the header"),
+        ("first.ppm", b"# mine\nP6\n2 2\n255\n", "line 1: a comment before the magic number: a PPM starts with P6 or P3"),
+    ];
+    for (name, bytes, message) in cases {
+        let bad = dir.path().join(name);
+        std::fs::write(&bad, bytes).unwrap();
+        let o = glint(&["compare", arg(&good), arg(&bad)]);
+        assert_eq!(o.status.code(), Some(3), "{name}: {}", stderr(&o));
+        assert_eq!(stderr(&o), format!("glint: {}: {message}\n", bad.display()), "{name}");
+    }
+}
+
 #[test]
 fn the_diff_map_shows_the_error_where_it_is_with_a_legend() {
     let dir = tempfile::tempdir().unwrap();
@@ -193,7 +254,7 @@ fn bad_inputs_fail_naming_the_file() {
         (vec![arg(&small), arg(&big)], 3, format!("glint: {}: the image is 4x3, but the reference {} is 2x2", big.display(), small.display())),
         (vec![arg(&missing), arg(&big)], 3, format!("glint: {}: cannot read: ", missing.display())),
         (vec![arg(&small), arg(&garbage)], 3, format!("glint: {}: not a readable image", garbage.display())),
-        (vec![arg(&small), arg(&bmp)], 3, format!("glint: {}: unsupported image format: use .png, .exr or .pfm", bmp.display())),
+        (vec![arg(&small), arg(&bmp)], 3, format!("glint: {}: unsupported image format: use .png, .ppm, .exr or .pfm", bmp.display())),
         (vec![arg(&small), arg(&small), "--metric", "ssim"], 2, "glint: invalid value 'ssim' for '--metric".into()),
         (vec![arg(&small), arg(&small), "--threshold", "nan"], 2, "`nan` is not a finite number".into()),
         (vec![arg(&small), arg(&small), "--max-bad-fraction", "2"], 2, "`2` is not a fraction in [0, 1]".into()),

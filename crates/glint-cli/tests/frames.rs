@@ -120,6 +120,22 @@ fn frames_compose_with_shards_and_aovs() {
     }
 }
 
+/// Frames written as PPM hold the samples of the same frames written as PNG.
+#[test]
+fn frames_are_written_as_ppm_too() {
+    let dir = tempfile::tempdir().unwrap();
+    render(&["--frames", "1..3", "-o", path(&dir.path().join("png_%04d.png"))]);
+    render(&["--frames", "1..3", "-o", path(&dir.path().join("ppm_%04d.ppm"))]);
+    assert_eq!(files(dir.path()), ["png_0001.png", "png_0002.png", "ppm_0001.ppm", "ppm_0002.ppm"]);
+    for n in 1..3 {
+        let ppm = std::fs::read(dir.path().join(format!("ppm_{n:04}.ppm"))).unwrap();
+        let header = b"P6\n64 48\n255\n";
+        assert!(ppm.starts_with(header));
+        let png = image::open(frame(dir.path(), "png", n)).unwrap().to_rgb8().into_raw();
+        assert!(ppm[header.len()..] == png[..], "frame {n}");
+    }
+}
+
 /// Every mistake is one line and a usage error before any rendering: no
 /// file is written.
 #[test]

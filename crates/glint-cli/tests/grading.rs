@@ -248,3 +248,61 @@ fn a_class_folder_is_graded_as_it_arrives() {
     assert!(!report.join("zed").exists() && report.join("notes/todo.txt").is_file());
     assert!(!report.join("__MACOSX").exists() && !report.join(".git").exists());
 }
+
+/// A course whose students hand in PPM, as many ray-tracing courses ask: the
+/// manifest names `.ppm` images, against a scene and against a PPM reference,
+/// and each student's raw or plain file is graded with no conversion.
+#[test]
+fn a_class_of_ppm_images_is_graded() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path();
+    for folder in ["refs", "subs/ann", "subs/bob", "subs/cat", "subs/dan"] {
+        std::fs::create_dir_all(root.join(folder)).unwrap();
+    }
+    let scene = root.join("sphere.toml");
+    std::fs::write(&scene, SPHERE).unwrap();
+    std::fs::write(
+        root.join("course.toml"),
+        "name = \"ppm\"\n\n[[case]]\nname = \"balls\"\nimage = \"balls_s1.ppm\"\nscene = \"sphere.toml\"\npoints = 10\n\n\
+         [[case.partial]]\nflip = 0.2\npoints = 4\n\n\
+         [[case]]\nname = \"normals\"\nimage = \"normals.ppm\"\ngolden = \"refs/normals.ppm\"\npoints = 5\n",
+    )
+    .unwrap();
+    render(&scene, &root.join("refs/normals.ppm"), &["--view", "normals", "--plain"]);
+    // ann: Glint's own raw PPMs; bob: plain ones with a comment, as a student's
+    // program writes them, and one pixel block wrong; cat: a file cut short;
+    // dan: a PGM, not a PPM.
+    render(&scene, &root.join("subs/ann/balls_s1.ppm"), &[]);
+    std::fs::copy(root.join("refs/normals.ppm"), root.join("subs/ann/normals.ppm")).unwrap();
+    let right = glint_gpu::read_ppm(&std::fs::read(root.join("subs/ann/balls_s1.ppm")).unwrap()).unwrap();
+    let mut samples = right.samples.clone();
+    for y in 10..13 {
+        for x in 20..24 {
+            let at = (y * right.width as usize + x) * 3;
+            samples[at..at + 3].copy_from_slice(&[255; 3]);
+        }
+    }
+    let text: Vec<String> = samples.iter().map(u16::to_string).collect();
+    let plain = format!("P3\n# balls, by bob\n{} {}\n255\n{}\n", right.width, right.height, text.join("\n"));
+    std::fs::write(root.join("subs/bob/balls_s1.ppm"), plain).unwrap();
+    std::fs::copy(root.join("refs/normals.ppm"), root.join("subs/bob/normals.ppm")).unwrap();
+    let raw = std::fs::read(root.join("subs/ann/balls_s1.ppm")).unwrap();
+    std::fs::write(root.join("subs/cat/balls_s1.ppm"), &raw[..raw.len() / 2]).unwrap();
+    std::fs::write(root.join("subs/dan/balls_s1.ppm"), b"P5\n1 1\n255\n\x00").unwrap();
+
+    let report = root.join("report");
+    let o = glint(&["test", arg(&root.join("course.toml")), "--submissions", arg(&root.join("subs")), "--report", arg(&report)]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(lines[0].starts_with("ok      ann/balls: flip 0 <= 0.01") && lines[0].ends_with("(10/10 points)"), "{out}");
+    assert!(lines[1].starts_with("ok      ann/normals: flip 0 <= 0.01"), "{out}");
+    assert!(lines[3].starts_with("FAIL    bob/balls: flip ") && lines[3].ends_with("(4/10 points)"), "{out}");
+    let cut = root.join("subs/cat/balls_s1.ppm");
+    let promised = format!("the header promises {}x{} pixels ({} bytes of samples), but", right.width, right.height, right.samples.len());
+    assert!(lines[6].starts_with(&format!("FAIL    cat/balls: {}: truncated: {promised}", cut.display())), "{out}");
+    let pgm = root.join("subs/dan/balls_s1.ppm");
+    assert!(lines[9].starts_with(&format!("FAIL    dan/balls: {}: not a PPM: it starts with P5, a PGM (greymap)", pgm.display())), "{out}");
+    let scores: Vec<f64> = ["ann", "bob", "cat", "dan"].iter().map(|s| json(&report.join(s).join("results.json"))["score"].as_f64().unwrap()).collect();
+    assert_eq!(scores, [15.0, 9.0, 0.0, 0.0]);
+}

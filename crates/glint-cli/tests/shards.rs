@@ -63,9 +63,11 @@ fn assert_same_file(a: &Path, b: &Path) {
 #[test]
 fn stitched_shards_are_the_single_render_byte_for_byte() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, &[&str]); 6] = [
+    let cases: [(&str, &[&str]); 8] = [
         ("png", &["--spp", "4", "--filter", "tent", "--seed", "5"]),
         ("png", &["--bits", "16", "--spp", "2"]),
+        ("ppm", &["--spp", "2"]),
+        ("ppm", &["--bits", "16", "--plain"]),
         ("exr", &["--spp", "3"]),
         ("pfm", &[]),
         ("exr", &["--view", "depth"]),
@@ -195,6 +197,8 @@ fn parts_that_do_not_make_one_image_are_one_line_errors() {
     let bottom = part("bottom.png", &["--shard", "1/2"]);
     let bottom16 = part("bottom16.png", &["--shard", "1/2", "--bits", "16"]);
     let bottom_exr = part("bottom.exr", &["--shard", "1/2"]);
+    let top_ppm = part("top.ppm", &["--shard", "0/2"]);
+    let bottom_plain = part("bottom_plain.ppm", &["--shard", "1/2", "--plain"]);
     let wider = dir.path().join("wider.png");
     let o = glint(&["render", &showcase(), "-o", path(&wider), "--width", "62", "--height", "37", "--shard", "1/2", "-q"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -209,12 +213,15 @@ fn parts_that_do_not_make_one_image_are_one_line_errors() {
 
     // An unmatched shell glob reaches glint as it is.
     let unmatched = dir.path().join("shard_*.png");
-    let cases: [(&[&PathBuf], &str, &str); 10] = [
+    let cases: [(&[&PathBuf], &str, &str); 13] = [
         (&[&top], "out.png", "uncovered, the first at (0, 18): shard 1 of 2 is missing"),
         (&[&top, &bottom, &overlapping], "out.png", "overlap"),
         (&[&top, &wider], "out.png", "is a part of a 62x37 image, but"),
         (&[&top, &bottom16], "out.png", "is a 16-bit PNG, but"),
         (&[&top, &bottom_exr], "out.png", "is an RGB EXR, but"),
+        (&[&top_ppm, &bottom], "out.ppm", "bottom.png: is an 8-bit PNG, but"),
+        (&[&top_ppm, &bottom_plain], "out.ppm", "is an 8-bit plain PPM (P3), but"),
+        (&[&top_ppm], "out.png", "the parts are .ppm files and stitching keeps their format: name the output .ppm"),
         (&[&top, &bottom], "out.exr", "the parts are .png files"),
         (&[&top, &whole], "out.png", "whole.png: no placement file"),
         (&[&resized, &bottom], "out.png", "is 61x18, but its placement"),

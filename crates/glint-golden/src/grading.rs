@@ -140,7 +140,7 @@ struct Prepared {
 }
 
 enum ReferenceImage {
-    /// A render as it reads back from a PNG, and from a float file, made once
+    /// A render as it reads back from a PNG or PPM, and from a float file, made once
     /// for every student.
     Rendered { image: Image, png: LinearImage, float: LinearImage },
     Read(LinearImage),
@@ -154,7 +154,7 @@ impl ReferenceImage {
     /// A render is compared as it reads back in the submission's format.
     fn linear(&self, format: Format) -> &LinearImage {
         match self {
-            ReferenceImage::Rendered { png, float, .. } => if format == Format::Png { png } else { float },
+            ReferenceImage::Rendered { png, float, .. } => if format.is_display() { png } else { float },
             ReferenceImage::Read(image) => image,
         }
     }

@@ -1,11 +1,11 @@
 //! Images as they are compared: linear RGB in f32, whichever file they came
-//! from. PNG holds display values, so it is decoded from sRGB; EXR and PFM
+//! from. PNG and PPM hold display values, so they are decoded from sRGB; EXR and PFM
 //! already hold linear radiance. Comparing in one space is what lets a PNG be
 //! checked against an EXR of the same render.
 
 use std::path::{Path, PathBuf};
 
-use glint_gpu::Format;
+use glint_image::Format;
 
 /// Linear RGB pixels, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,9 +34,9 @@ pub fn format_of(path: &Path) -> Option<Format> {
     Format::from_path(path).ok()
 }
 
-/// Reads a .png, .exr or .pfm file as linear RGB.
+/// Reads a .png, .ppm, .exr or .pfm file as linear RGB.
 pub fn read(path: &Path) -> Result<LinearImage, ReadError> {
-    let format = format_of(path).ok_or_else(|| ReadError::new(path, "unsupported image format: use .png, .exr or .pfm"))?;
+    let format = format_of(path).ok_or_else(|| ReadError::new(path, format!("unsupported image format: use {}", Format::EXTENSIONS)))?;
     let bytes = std::fs::read(path).map_err(|e| ReadError::new(path, format!("cannot read: {e}")))?;
     let image = decode(&bytes, format).map_err(|message| ReadError::new(path, message))?;
     if image.pixels.is_empty() {
@@ -55,8 +55,13 @@ fn decode(bytes: &[u8], format: Format) -> Result<LinearImage, String> {
             // The image crate reads only RGB(A) EXRs.
             Err(e) => single_channel_exr(bytes).ok_or(e),
         },
+        Format::Ppm => {
+            let ppm = glint_image::read_ppm(bytes)?;
+            let pixels = ppm.display_values().map(srgb_to_linear).collect::<Vec<_>>().chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+            Ok(LinearImage { width: ppm.width, height: ppm.height, pixels })
+        }
         Format::Pfm => {
-            let (width, height, pixels) = glint_gpu::read_pfm(bytes)?;
+            let (width, height, pixels) = glint_image::read_pfm(bytes)?;
             Ok(LinearImage { width, height, pixels })
         }
     }
@@ -66,7 +71,7 @@ fn decode(bytes: &[u8], format: Format) -> Result<LinearImage, String> {
 /// are one number per pixel (depth, id, heatmap): that number in R, G and B,
 /// as a greyscale PFM reads.
 fn single_channel_exr(bytes: &[u8]) -> Option<LinearImage> {
-    let (width, height, channels) = glint_gpu::read_exr_channels(bytes).ok()?;
+    let (width, height, channels) = glint_image::read_exr_channels(bytes).ok()?;
     let [(_, values)] = &channels[..] else { return None };
     Some(LinearImage { width, height, pixels: values.iter().map(|&v| [v; 3]).collect() })
 }
@@ -78,12 +83,12 @@ fn from_rgb32f(rgb: image::Rgb32FImage, to_linear: fn(f32) -> f32) -> LinearImag
 }
 
 impl LinearImage {
-    /// A render as it reads back once written in `format`: PNG stores the
-    /// display values at 8 bits, EXR and PFM the linear values exactly. A
+    /// A render as it reads back once written in `format`: PNG and PPM store
+    /// the display values at 8 bits, EXR and PFM the linear values exactly. A
     /// render compared this way gives the same numbers as its file would.
-    pub fn from_render(image: &glint_gpu::Image, format: Format) -> Self {
+    pub fn from_render(image: &glint_image::Image, format: Format) -> Self {
         let pixels = match format {
-            Format::Png => image.to_rgb8().pixels().map(|p| p.0.map(|c| srgb_to_linear(f32::from(c) / 255.0))).collect(),
+            Format::Png | Format::Ppm => image.to_rgb8().pixels().map(|p| p.0.map(|c| srgb_to_linear(f32::from(c) / 255.0))).collect(),
             Format::Exr | Format::Pfm => image.linear.iter().map(|p| [p[0], p[1], p[2]]).collect(),
         };
         Self { width: image.width, height: image.height, pixels }
@@ -138,7 +143,7 @@ mod tests {
 
     #[test]
     fn float_formats_keep_linear_values() {
-        let render = glint_gpu::Image {
+        let render = glint_image::Image {
             width: 2,
             height: 1,
             display: vec![[1.0, 1.0, 1.0, 1.0]; 2],
@@ -147,7 +152,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for name in ["r.exr", "r.pfm"] {
             let path = dir.path().join(name);
-            glint_gpu::write_image(&render, &path, glint_gpu::PngBits::Eight).unwrap();
+            glint_image::write_image(&render, &path, glint_image::Bits::Eight).unwrap();
             let read_back = read(&path).unwrap();
             assert_eq!(read_back.pixels, vec![[0.25, 2.5, 0.0], [1e-3, 0.5, 7.0]], "{name}");
             assert_eq!(read_back, LinearImage::from_render(&render, format_of(&path).unwrap()), "{name}");
@@ -156,7 +161,7 @@ mod tests {
 
     #[test]
     fn one_channel_files_read_as_grey() {
-        let render = glint_gpu::Image {
+        let render = glint_image::Image {
             width: 3,
             height: 1,
             display: vec![[0.0; 4]; 3],
@@ -165,23 +170,48 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for name in ["z.exr", "z.pfm"] {
             let path = dir.path().join(name);
-            glint_gpu::write_image_channels(&render, &path, glint_gpu::PngBits::Eight, glint_gpu::Channels::Single("Z")).unwrap();
+            glint_image::write_image_channels(&render, &path, glint_image::Bits::Eight.into(), glint_image::Channels::Single("Z")).unwrap();
             assert_eq!(read(&path).unwrap().pixels, vec![[1.5; 3], [f32::INFINITY; 3], [-1.0; 3]], "{name}");
         }
     }
 
     #[test]
+    fn a_ppm_reads_as_the_png_of_the_same_bytes_at_any_maxval() {
+        let bytes: Vec<u8> = (0..=255).flat_map(|v| [v, 255 - v, v / 2]).collect();
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("ramp.png");
+        std::fs::write(&png, encode_png(&image::RgbImage::from_raw(256, 1, bytes.clone()).unwrap())).unwrap();
+        let png = read(&png).unwrap();
+        let raw = dir.path().join("raw.ppm");
+        std::fs::write(&raw, [b"P6\n256 1\n255\n".as_slice(), &bytes].concat()).unwrap();
+        assert_eq!(read(&raw).unwrap(), png);
+        let plain = dir.path().join("plain.PPM");
+        let text: Vec<String> = bytes.iter().map(u8::to_string).collect();
+        std::fs::write(&plain, format!("P3\n# a comment\n256 1\n255\n{}\n", text.join("\n"))).unwrap();
+        assert_eq!(read(&plain).unwrap(), png);
+        // Other maxvals scale to [0, 1] before decoding: 500 of 1000 is 128 of 255's neighbour 0.5.
+        let thousand = dir.path().join("thousand.ppm");
+        std::fs::write(&thousand, b"P6 1 1 1000\n\x03\xe8\x01\xf4\x00\x00").unwrap();
+        assert_eq!(read(&thousand).unwrap().pixels, [[1.0, srgb_to_linear(0.5), 0.0]]);
+        let one = dir.path().join("one.ppm");
+        std::fs::write(&one, b"P3 2 1 1  1 0 1  0 1 0").unwrap();
+        assert_eq!(read(&one).unwrap().pixels, [[1.0, 0.0, 1.0], [0.0, 1.0, 0.0]]);
+    }
+
+    #[test]
     fn a_render_compares_as_its_png_would_read() {
-        let render = glint_gpu::Image {
+        let render = glint_image::Image {
             width: 1,
             height: 2,
             display: vec![[0.5, 0.25, 1.0, 1.0], [0.0, 0.999, 0.1, 1.0]],
             linear: vec![[0.0; 4]; 2],
         };
         let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("r.png");
-        glint_gpu::write_image(&render, &path, glint_gpu::PngBits::Eight).unwrap();
-        assert_eq!(read(&path).unwrap(), LinearImage::from_render(&render, Format::Png));
+        for (name, format) in [("r.png", Format::Png), ("r.ppm", Format::Ppm)] {
+            let path = dir.path().join(name);
+            glint_image::write_image(&render, &path, glint_image::Bits::Eight).unwrap();
+            assert_eq!(read(&path).unwrap(), LinearImage::from_render(&render, format), "{name}");
+        }
     }
 
     #[test]
@@ -194,11 +224,15 @@ mod tests {
         std::fs::write(&garbage, b"not an image").unwrap();
         let e = read(&garbage).unwrap_err().to_string();
         assert!(e.starts_with(&format!("{}: not a readable image", garbage.display())), "{e}");
+        let truncated = dir.path().join("truncated.ppm");
+        std::fs::write(&truncated, b"P6\n2 2\n255\n\x00\x00").unwrap();
+        let e = read(&truncated).unwrap_err().to_string();
+        assert_eq!(e, format!("{}: truncated: the header promises 2x2 pixels (12 bytes of samples), but 2 bytes follow it", truncated.display()));
         let empty = dir.path().join("empty.pfm");
         std::fs::write(&empty, b"PF\n0 0\n-1.0\n").unwrap();
         assert_eq!(read(&empty).unwrap_err().to_string(), format!("{}: the image has no pixels", empty.display()));
         let bmp = dir.path().join("picture.bmp");
         let e = read(&bmp).unwrap_err().to_string();
-        assert_eq!(e, format!("{}: unsupported image format: use .png, .exr or .pfm", bmp.display()));
+        assert_eq!(e, format!("{}: unsupported image format: use .png, .ppm, .exr or .pfm", bmp.display()));
     }
 }

@@ -302,7 +302,7 @@ fn scene_cases(def: &ScenesDef, base: &Path, render: &RenderSettings, compare: &
 fn check_golden(golden: &Path) -> Result<(), String> {
     match image_io::format_of(golden) {
         Some(_) => Ok(()),
-        None => Err(format!("golden: {}: use a .png, .exr or .pfm file", golden.display())),
+        None => Err(format!("golden: {}: use a {} file", golden.display(), glint_gpu::Format::EXTENSIONS)),
     }
 }
 
@@ -455,7 +455,7 @@ render = { spp = 1, width = 64, height = 48 }
             ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\nvisibility = \"later\"\n", ":4:", "unknown variant `later`"),
             ("[[case]]\nimage = \"a.png\"\n", ":1:", "image: a graded `image` needs its reference"),
             ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\ngolden = \"a.png\"\n", ":1:", "not both"),
-            ("[[case]]\nimage = \"{student}.jpg\"\nscene = \"a.toml\"\n", ":1:", "image: {student}.jpg: use a .png, .exr or .pfm file"),
+            ("[[case]]\nimage = \"{student}.jpg\"\nscene = \"a.toml\"\n", ":1:", "image: {student}.jpg: use a .png, .ppm, .exr or .pfm file"),
             ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\npoints = 0\n", ":4:", "0 is not a positive finite number"),
             ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\n\n[[case.partial]]\nrmse = 0.1\npoints = 0\n", ":5:", "partial: the case is judged by flip"),
             ("[[case]]\nimage = \"a.png\"\nscene = \"x/a.toml\"\n[[case]]\nimage = \"b.png\"\nscene = \"y/a.toml\"\n", ":4:", "graded cases `a` and `a`"),

@@ -11,7 +11,7 @@ use std::fmt;
 use std::path::PathBuf;
 use std::sync::{mpsc, Mutex};
 
-use glint_gpu::{Image, PngBits, Renderer};
+use glint_gpu::{Bits, Image, Renderer};
 
 use crate::case_render::Rendered;
 use crate::comparison::{compare, ReportImages, Roles};
@@ -224,7 +224,7 @@ fn judge_render(case: &Case, image: &Image, options: RunOptions) -> Outcome {
         return bless(case, image);
     }
     let Some(format) = image_io::format_of(&case.golden) else {
-        return Outcome::new(case, Status::Error, format!("golden {}: use a .png, .exr or .pfm file", case.golden.display()));
+        return Outcome::new(case, Status::Error, format!("golden {}: use a {} file", case.golden.display(), glint_gpu::Format::EXTENSIONS));
     };
     let render = LinearImage::from_render(image, format);
     if !case.golden.exists() {
@@ -258,7 +258,7 @@ fn bless(case: &Case, image: &Image) -> Outcome {
         .filter(|p| !p.as_os_str().is_empty())
         .map_or(Ok(()), std::fs::create_dir_all)
         .map_err(|e| format!("{}: cannot create the directory: {e}", case.golden.display()))
-        .and_then(|()| glint_gpu::write_image(image, &case.golden, PngBits::Eight).map_err(|e| e.to_string()));
+        .and_then(|()| glint_gpu::write_image(image, &case.golden, Bits::Eight).map_err(|e| e.to_string()));
     match written {
         Ok(()) => Outcome::new(case, Status::Blessed, format!("wrote {}", case.golden.display())),
         Err(e) => Outcome::new(case, Status::Error, format!("cannot bless: {e}")),

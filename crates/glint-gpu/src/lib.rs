@@ -3,8 +3,9 @@
 //! accumulated samples and reads the image back.
 //!
 //! The modules that are a subsystem of their own are public (`shaders`,
-//! `interactive`, `probe`, `display`, `schedule`, `stitch`, `kernel_dump`); the host
-//! pipeline's types are used from the crate root.
+//! `interactive`, `probe`, `display`, `schedule`, `kernel_dump`); the host
+//! pipeline's types are used from the crate root. Image files are
+//! `glint-image`'s, re-exported here for the front ends that render them.
 
 mod device;
 mod error_scope;
@@ -14,7 +15,6 @@ mod frame;
 pub mod interactive;
 pub mod kernel_dump;
 mod lavapipe;
-mod output;
 mod pipelines;
 pub mod primitive_dispatch;
 pub mod probe;
@@ -24,9 +24,6 @@ mod renderer;
 mod scene_textures;
 pub mod schedule;
 pub mod shaders;
-mod sink;
-pub mod stitch;
-mod tiles;
 mod tuning;
 
 pub use device::{adapter_rank, backends, device_descriptor, driver_warning, Gpu, SceneLimits, ADAPTER_ENV, NO_ADAPTER_HINT};
@@ -38,15 +35,13 @@ pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
 pub use eye_tiles::binning::Footprints;
 pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
 pub use frame::{Acceleration, Prepared};
-pub use output::{
-    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
-    OutputPathError, PngBits,
+pub use glint_image::{
+    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, read_ppm, stitch, write_atomically, write_image, write_image_channels, Bits,
+    Channels, Format, Image, ImageSink, OutputPathError, Ppm, PpmForm, Region, Samples, StagedImage,
 };
 pub use glint_encoding::RayStats;
 pub use readback::Readback;
 pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
-pub use sink::{ImageSink, StagedImage};
-pub use tiles::Region;
 
 /// Everything that can go wrong on the GPU side, one line each.
 #[derive(Debug, thiserror::Error)]
@@ -72,4 +67,13 @@ pub enum GpuError {
     Output(String),
     #[error("the scene cannot be rendered: {0}")]
     Invalid(#[from] glint_scene::validate::Invalid),
+}
+
+impl From<glint_image::ImageError> for GpuError {
+    fn from(e: glint_image::ImageError) -> Self {
+        match e {
+            glint_image::ImageError::Output(m) => GpuError::Output(m),
+            glint_image::ImageError::Stitch(m) => GpuError::Stitch(m),
+        }
+    }
 }

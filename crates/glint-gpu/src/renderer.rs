@@ -20,8 +20,7 @@ use crate::scene_textures;
 use crate::profile::DeviceProfile;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tuning::Tuning;
-use crate::tiles::Region;
-use crate::{display, GpuError, Image, Readback};
+use crate::{display, GpuError, Image, Readback, Region};
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -12,7 +12,7 @@ use egui::{Pos2, Rect, Vec2};
 use glam::Vec3;
 use glint_encoding::gpu_types::{self, View};
 use glint_gpu::schedule::BandScheduler;
-use glint_gpu::{GpuError, PngBits, Readback};
+use glint_gpu::{Bits, GpuError, Readback};
 use glint_scene::Camera;
 
 use crate::app::one_line;
@@ -276,13 +276,14 @@ impl TracedImage {
         }
     }
 
-    /// Resolves the image of `doc` as `settings` show it and writes it to `path` as PNG.
+    /// Resolves the image of `doc` as `settings` show it and writes it to `path`,
+    /// in the format its extension names (PNG, PPM, EXR or PFM).
     pub fn save_png(&self, path: &Path, doc: Option<&LoadedScene>, settings: &Settings) -> Result<glint_gpu::Image, GpuError> {
         match &self.canvas {
             Some(canvas) if self.canvas_is_current(doc) => canvas
                 .renderer()
                 .resolve(&canvas.prepared.buffers, &settings.present_options(canvas))
-                .and_then(|image| glint_gpu::write_image(&image, path, PngBits::Eight).map(|()| image)),
+                .and_then(|image| glint_gpu::write_image(&image, path, Bits::Eight).map(|()| image).map_err(GpuError::from)),
             _ => Err(GpuError::Output("there is no image to save yet".into())),
         }
     }

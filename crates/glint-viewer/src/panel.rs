@@ -351,7 +351,7 @@ impl ViewerApp {
         ui.horizontal(|ui| {
             let label = ui.label("image");
             ui.text_edit_singleline(&mut self.document.screenshot_path).labelled_by(label.id);
-            if ui.button("Save image").on_hover_text("PNG at the render resolution").clicked() {
+            if ui.button("Save image").on_hover_text("PNG, PPM, EXR or PFM, by the name's extension, at the render resolution").clicked() {
                 self.save_screenshot();
             }
         });

@@ -3,8 +3,9 @@
 use std::io::Write;
 use std::path::Path;
 
+use crate::ppm::PpmForm;
 use crate::sink::ImageSink;
-use crate::GpuError;
+use crate::ImageError;
 
 /// A rendered image, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,6 +23,9 @@ pub struct Image {
 pub enum Format {
     /// Display values, 8 or 16 bits per channel.
     Png,
+    /// Display values, 8 or 16 bits per channel, as bytes (P6) or text (P3):
+    /// Netpbm's portable pixmap.
+    Ppm,
     /// Linear 32-bit float RGB.
     Exr,
     /// Linear 32-bit float RGB, the Portable Float Map.
@@ -29,21 +33,32 @@ pub enum Format {
 }
 
 impl Format {
-    pub fn from_path(path: &Path) -> Result<Self, GpuError> {
+    pub fn from_path(path: &Path) -> Result<Self, ImageError> {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("png") => Ok(Format::Png),
+            Some("ppm") => Ok(Format::Ppm),
             Some("exr") => Ok(Format::Exr),
             Some("pfm") => Ok(Format::Pfm),
-            _ => Err(GpuError::Output(format!(
-                "{}: unsupported output format: use .png, .exr or .pfm",
-                path.display()
+            _ => Err(ImageError::Output(format!(
+                "{}: unsupported output format: use {}",
+                path.display(),
+                Format::EXTENSIONS
             ))),
         }
+    }
+
+    /// The extensions [`Format::from_path`] knows, in words for messages.
+    pub const EXTENSIONS: &'static str = ".png, .ppm, .exr or .pfm";
+
+    /// Whether the file holds display values (sRGB-encoded, as a screen
+    /// shows them) rather than linear ones.
+    pub fn is_display(self) -> bool {
+        matches!(self, Format::Png | Format::Ppm)
     }
 }
 
 impl Image {
-    /// The display values as an 8-bit PNG stores them.
+    /// The display values as an 8-bit PNG or PPM stores them.
     pub fn to_rgb8(&self) -> image::RgbImage {
         image::RgbImage::from_fn(self.width, self.height, |x, y| {
             let p = self.display[(y * self.width + x) as usize];
@@ -87,22 +102,36 @@ impl Image {
     }
 }
 
-/// A display value in [0, 1] as an 8-bit PNG sample.
+/// A display value in [0, 1] as an 8-bit sample.
 pub(crate) fn to_u8(v: f32) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).round() as u8
 }
 
-/// A display value in [0, 1] as a 16-bit PNG sample.
+/// A display value in [0, 1] as a 16-bit sample.
 pub(crate) fn to_u16(v: f32) -> u16 {
     (v.clamp(0.0, 1.0) * 65535.0).round() as u16
 }
 
-/// Bits per channel of PNG output.
+/// Bits per channel of PNG and PPM output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum PngBits {
+pub enum Bits {
     #[default]
     Eight,
     Sixteen,
+}
+
+/// How a PNG or PPM file stores display values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Samples {
+    pub bits: Bits,
+    /// For a PPM: bytes (`P6`) or text (`P3`).
+    pub ppm: PpmForm,
+}
+
+impl From<Bits> for Samples {
+    fn from(bits: Bits) -> Self {
+        Samples { bits, ppm: PpmForm::Raw }
+    }
 }
 
 /// What an image's linear values are, which decides how many channels a
@@ -114,19 +143,20 @@ pub enum Channels {
     Rgb,
     /// One number per pixel (depth, object id, nodes visited), the first
     /// linear channel: a greyscale PFM (`Pf`), and an EXR with the one
-    /// channel named here. PNG output is unaffected.
+    /// channel named here. PNG and PPM output are unaffected.
     Single(&'static str),
 }
 
 /// Writes `image` to `path` in the format its extension names, atomically
 /// (see [`ImageSink`]).
-pub fn write_image(image: &Image, path: &Path, bits: PngBits) -> Result<(), GpuError> {
-    write_image_channels(image, path, bits, Channels::Rgb)
+pub fn write_image(image: &Image, path: &Path, bits: Bits) -> Result<(), ImageError> {
+    write_image_channels(image, path, bits.into(), Channels::Rgb)
 }
 
-/// [`write_image`], with float formats written with `channels`.
-pub fn write_image_channels(image: &Image, path: &Path, bits: PngBits, channels: Channels) -> Result<(), GpuError> {
-    let mut sink = ImageSink::create(path, image.width, image.height, bits, channels)?;
+/// [`write_image`], with display formats written with `samples` and float
+/// formats with `channels`.
+pub fn write_image_channels(image: &Image, path: &Path, samples: Samples, channels: Channels) -> Result<(), ImageError> {
+    let mut sink = ImageSink::create(path, image.width, image.height, samples, channels)?;
     sink.paste(image, 0, 0)?;
     sink.finish()?.commit()
 }
@@ -275,6 +305,7 @@ mod tests {
     fn output_paths_are_checked_without_leaving_files() {
         let dir = tempfile::tempdir().unwrap();
         assert_eq!(check_output_path(&dir.path().join("a.png")), Ok(Format::Png));
+        assert_eq!(check_output_path(&dir.path().join("a.PPM")), Ok(Format::Ppm));
         assert!(matches!(check_output_path(&dir.path().join("a.bmp")), Err(OutputPathError::Format(_))));
         let e = check_output_path(&dir.path().join("nodir/a.png")).unwrap_err().to_string();
         assert!(e.contains("a.png") && e.contains("does not exist"), "{e}");

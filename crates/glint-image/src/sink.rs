@@ -1,7 +1,7 @@
 //! Image files written as their tiles arrive. Each output keeps only what its
-//! file needs: a PNG encodes its rows as soon as they are complete and holds
-//! no more than the rows still waiting for pixels (one band of tiles when they
-//! arrive in reading order); EXR and PFM hold their linear values, only the
+//! file needs: a PNG or PPM writes its rows as soon as they are complete and
+//! holds no more than the rows still waiting for pixels (one band of tiles when
+//! they arrive in reading order); EXR and PFM hold their linear values, only the
 //! channels written, until the whole image is there (EXR compresses the whole
 //! image at once, PFM runs bottom up). The file is written under a temporary
 //! name beside its path and appears there only when committed, so a failure
@@ -15,8 +15,9 @@ use std::sync::{Arc, Mutex};
 
 use tempfile::TempPath;
 
-use crate::output::{temp_beside, to_u16, to_u8, Channels, Format, Image, PngBits};
-use crate::GpuError;
+use crate::output::{temp_beside, to_u16, to_u8, Bits, Channels, Format, Image, Samples};
+use crate::ppm::{self, PpmForm};
+use crate::ImageError;
 
 /// An image file of `width` × `height` being written, tile by tile.
 pub struct ImageSink {
@@ -31,23 +32,30 @@ pub struct ImageSink {
 
 /// What an output holds until its file is complete.
 enum Pixels {
-    /// Boxed: the encoder's state is far larger than the other variant.
-    Png(Box<RowStream>),
+    /// Display values, PNG or PPM. Boxed: the PNG encoder's state is far
+    /// larger than the other variant.
+    Rows(Box<RowStream>),
     /// Linear values, `channels` per pixel, row by row from the top.
     Float { format: Format, channels: Channels, file: File, values: Vec<f32> },
 }
 
-/// PNG rows on their way to the encoder, which takes them in order.
+/// Rows of display values on their way to the file, which takes them in order.
 struct RowStream {
-    encoder: png::StreamWriter<'static, SharedFile>,
-    file: SharedFile,
-    bits: PngBits,
+    out: RowOut,
+    bits: Bits,
     /// The first row not yet encoded.
     first: u32,
-    /// Rows from `first` on, as PNG samples, up to the lowest row pasted into.
+    /// Rows from `first` on, as PNG samples (a raw PPM's too), up to the
+    /// lowest row pasted into.
     rows: Vec<u8>,
     /// Pixels pasted so far into each of those rows.
     filled: VecDeque<u32>,
+}
+
+/// Where complete rows go.
+enum RowOut {
+    Png { encoder: png::StreamWriter<'static, SharedFile>, file: SharedFile },
+    Ppm { form: PpmForm, file: BufWriter<File> },
 }
 
 /// The temporary file, shared between the PNG encoder and the sink: the
@@ -76,10 +84,12 @@ const PNG_CHUNK_BYTES: usize = 1 << 20;
 
 impl ImageSink {
     /// Starts the file for `path`, in the format its extension names: display
-    /// values at `bits` for PNG, linear values with `channels` for EXR and PFM.
-    pub fn create(path: &Path, width: u32, height: u32, bits: PngBits, channels: Channels) -> Result<Self, GpuError> {
+    /// values as `samples` says for PNG and PPM, linear values with `channels`
+    /// for EXR and PFM.
+    pub fn create(path: &Path, width: u32, height: u32, samples: Samples, channels: Channels) -> Result<Self, ImageError> {
+        let Samples { bits, ppm: form } = samples;
         let format = Format::from_path(path)?;
-        let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
+        let fail = |e: &dyn std::fmt::Display| ImageError::Output(format!("{}: {e}", path.display()));
         let (file, temp) = temp_beside(path).map_err(|e| fail(&e))?.into_parts();
         let pixels = match format {
             Format::Png => {
@@ -87,8 +97,8 @@ impl ImageSink {
                 let mut encoder = png::Encoder::new(file.clone(), width, height);
                 encoder.set_color(png::ColorType::Rgb);
                 encoder.set_depth(match bits {
-                    PngBits::Eight => png::BitDepth::Eight,
-                    PngBits::Sixteen => png::BitDepth::Sixteen,
+                    Bits::Eight => png::BitDepth::Eight,
+                    Bits::Sixteen => png::BitDepth::Sixteen,
                 });
                 // What the `image` crate chooses by default: fast compression,
                 // each row filtered as suits it best.
@@ -98,7 +108,12 @@ impl ImageSink {
                     .write_header()
                     .and_then(|w| w.into_stream_writer_with_size(PNG_CHUNK_BYTES))
                     .map_err(|e| fail(&e))?;
-                Pixels::Png(Box::new(RowStream { encoder, file, bits, first: 0, rows: Vec::new(), filled: VecDeque::new() }))
+                Pixels::Rows(Box::new(RowStream::new(RowOut::Png { encoder, file }, bits)))
+            }
+            Format::Ppm => {
+                let mut file = BufWriter::new(file);
+                file.write_all(ppm::header(form, width, height, bits).as_bytes()).map_err(|e| fail(&e))?;
+                Pixels::Rows(Box::new(RowStream::new(RowOut::Ppm { form, file }, bits)))
             }
             Format::Exr | Format::Pfm => {
                 let count = width as usize * height as usize * channel_count(channels);
@@ -109,9 +124,9 @@ impl ImageSink {
     }
 
     /// Copies `tile` into the image with its top-left corner at (`x`, `y`).
-    /// Tiles may come in any order but must not overlap; PNG rows are encoded
+    /// Tiles may come in any order but must not overlap; PNG and PPM rows are written
     /// as soon as they and all rows above them are complete.
-    pub fn paste(&mut self, tile: &Image, x: u32, y: u32) -> Result<(), GpuError> {
+    pub fn paste(&mut self, tile: &Image, x: u32, y: u32) -> Result<(), ImageError> {
         if x + tile.width > self.width || y + tile.height > self.height {
             return Err(self.error(format!("a {}x{} tile at ({x}, {y}) is outside the image", tile.width, tile.height)));
         }
@@ -120,7 +135,7 @@ impl ImageSink {
         }
         let width = self.width as usize;
         match &mut self.pixels {
-            Pixels::Png(stream) => stream.paste(tile, x, y, width).map_err(|e| self.error(e))?,
+            Pixels::Rows(stream) => stream.paste(tile, x, y, width).map_err(|e| self.error(e))?,
             Pixels::Float { channels, values, .. } => {
                 let count = channel_count(*channels);
                 for (r, row) in tile.linear.chunks_exact(tile.width as usize).enumerate() {
@@ -135,36 +150,37 @@ impl ImageSink {
         Ok(())
     }
 
-    /// Bytes of pixel values this output holds now: for a PNG the rows not
-    /// yet encoded, for EXR and PFM the whole image's linear values.
+    /// Bytes of pixel values this output holds now: for a PNG or PPM the rows
+    /// not yet written, for EXR and PFM the whole image's linear values.
     pub fn retained_bytes(&self) -> usize {
         match &self.pixels {
-            Pixels::Png(stream) => stream.rows.capacity() + stream.filled.capacity() * size_of::<u32>(),
+            Pixels::Rows(stream) => stream.rows.capacity() + stream.filled.capacity() * size_of::<u32>(),
             Pixels::Float { values, .. } => values.capacity() * size_of::<f32>(),
         }
     }
 
     /// Completes the file under its temporary name, on disk; it appears at
     /// its path when the result is committed.
-    pub fn finish(self) -> Result<StagedImage, GpuError> {
+    pub fn finish(self) -> Result<StagedImage, ImageError> {
         let Self { path, temp, width, height, pasted, pixels } = self;
-        let fail = |e: &dyn std::fmt::Display| GpuError::Output(format!("{}: {e}", path.display()));
+        let fail = |e: &dyn std::fmt::Display| ImageError::Output(format!("{}: {e}", path.display()));
         let total = u64::from(width) * u64::from(height);
         if pasted != total {
             return Err(fail(&format!("only {pasted} of the image's {total} pixels were rendered")));
         }
         let file = match pixels {
-            Pixels::Png(stream) => {
-                stream.encoder.finish().map_err(|e| fail(&e))?;
-                let (file, failed) = Arc::into_inner(stream.file.0)
-                    .expect("the encoder is gone")
-                    .into_inner()
-                    .unwrap_or_else(|e| e.into_inner());
-                if let Some(e) = failed {
-                    return Err(fail(&e));
+            Pixels::Rows(stream) => match stream.out {
+                RowOut::Png { encoder, file } => {
+                    encoder.finish().map_err(|e| fail(&e))?;
+                    let (file, failed) =
+                        Arc::into_inner(file.0).expect("the encoder is gone").into_inner().unwrap_or_else(|e| e.into_inner());
+                    if let Some(e) = failed {
+                        return Err(fail(&e));
+                    }
+                    file
                 }
-                file
-            }
+                RowOut::Ppm { file, .. } => file.into_inner().map_err(|e| fail(&e.into_error()))?,
+            },
             Pixels::Float { format, channels, file, values } => {
                 let mut out = BufWriter::new(file);
                 match (format, channels) {
@@ -184,16 +200,20 @@ impl ImageSink {
         Ok(StagedImage { path, temp })
     }
 
-    fn error(&self, message: String) -> GpuError {
-        GpuError::Output(format!("{}: {message}", self.path.display()))
+    fn error(&self, message: String) -> ImageError {
+        ImageError::Output(format!("{}: {message}", self.path.display()))
     }
 }
 
 impl RowStream {
+    fn new(out: RowOut, bits: Bits) -> Self {
+        RowStream { out, bits, first: 0, rows: Vec::new(), filled: VecDeque::new() }
+    }
+
     fn paste(&mut self, tile: &Image, x: u32, y: u32, width: usize) -> Result<(), String> {
         let sample = match self.bits {
-            PngBits::Eight => 3,
-            PngBits::Sixteen => 6,
+            Bits::Eight => 3,
+            Bits::Sixteen => 6,
         };
         let row_bytes = width * sample;
         let overlap = || format!("a {}x{} tile at ({x}, {y}) overlaps pixels already pasted", tile.width, tile.height);
@@ -216,8 +236,8 @@ impl RowStream {
             let start = (top + r) * row_bytes + x as usize * sample;
             let out = &mut self.rows[start..start + values.len() * sample];
             match self.bits {
-                PngBits::Eight => out.iter_mut().zip(values.iter().flat_map(|p| &p[..3])).for_each(|(o, &v)| *o = to_u8(v)),
-                PngBits::Sixteen => {
+                Bits::Eight => out.iter_mut().zip(values.iter().flat_map(|p| &p[..3])).for_each(|(o, &v)| *o = to_u8(v)),
+                Bits::Sixteen => {
                     for (o, &v) in out.chunks_exact_mut(2).zip(values.iter().flat_map(|p| &p[..3])) {
                         o.copy_from_slice(&to_u16(v).to_be_bytes());
                     }
@@ -226,7 +246,12 @@ impl RowStream {
         }
         let complete = self.filled.iter().take_while(|&&n| n as usize == width).count();
         if complete > 0 {
-            self.encoder.write_all(&self.rows[..complete * row_bytes]).map_err(|e| e.to_string())?;
+            let rows = &self.rows[..complete * row_bytes];
+            match &mut self.out {
+                RowOut::Png { encoder, .. } => encoder.write_all(rows),
+                RowOut::Ppm { form, file } => rows.chunks_exact(row_bytes).try_for_each(|row| ppm::write_row(*form, self.bits, row, file)),
+            }
+            .map_err(|e| e.to_string())?;
             self.rows.drain(..complete * row_bytes);
             self.filled.drain(..complete);
             self.first += complete as u32;
@@ -244,8 +269,8 @@ pub struct StagedImage {
 
 impl StagedImage {
     /// Renames the file to its path, replacing any file there.
-    pub fn commit(self) -> Result<(), GpuError> {
-        self.temp.persist(&self.path).map_err(|e| GpuError::Output(format!("{}: {}", self.path.display(), e.error)))
+    pub fn commit(self) -> Result<(), ImageError> {
+        self.temp.persist(&self.path).map_err(|e| ImageError::Output(format!("{}: {}", self.path.display(), e.error)))
     }
 }
 
@@ -316,8 +341,8 @@ mod tests {
 
     /// Writes `image` to `path` in tiles of `tile_pixels`, in reading order or
     /// its `reverse`, and returns the most bytes the sink held meanwhile.
-    fn write_in_tiles(image: &Image, path: &Path, bits: PngBits, channels: Channels, tile_pixels: u64, reverse: bool) -> usize {
-        let mut sink = ImageSink::create(path, image.width, image.height, bits, channels).unwrap();
+    fn write_in_tiles(image: &Image, path: &Path, samples: Samples, channels: Channels, tile_pixels: u64, reverse: bool) -> usize {
+        let mut sink = ImageSink::create(path, image.width, image.height, samples, channels).unwrap();
         let mut tiles = Region::whole(image.width, image.height).tiles(tile_pixels);
         if reverse {
             tiles.reverse();
@@ -337,17 +362,17 @@ mod tests {
         let img = image(width, height);
         let dir = tempfile::tempdir().unwrap();
         let whole = dir.path().join("whole.png");
-        crate::write_image(&img, &whole, PngBits::Eight).unwrap();
-        for (bits, sample) in [(PngBits::Eight, 3), (PngBits::Sixteen, 6)] {
+        crate::write_image(&img, &whole, Bits::Eight).unwrap();
+        for (bits, sample) in [(Bits::Eight, 3), (Bits::Sixteen, 6)] {
             // Bands of 16 whole rows, then tiles narrower than a row.
             for (tile_pixels, band_rows) in [(300 * 16, 16), (7, 1)] {
                 let path = dir.path().join(format!("{sample}-{tile_pixels}.png"));
-                let held = write_in_tiles(&img, &path, bits, Channels::Rgb, tile_pixels, false);
+                let held = write_in_tiles(&img, &path, bits.into(), Channels::Rgb, tile_pixels, false);
                 let band = width as usize * band_rows * sample;
                 // A row's count of pixels pasted is 4 bytes, at least 4 of them.
                 assert!(held <= band + band_rows.max(4) * 4, "{held} bytes held for bands of {band_rows} rows ({band} bytes)");
                 assert!(held < width as usize * height as usize * sample / 10, "a PNG must not hold its whole image");
-                if bits == PngBits::Eight {
+                if bits == Bits::Eight {
                     assert!(std::fs::read(&path).unwrap() == std::fs::read(&whole).unwrap(), "tiles change the file");
                 }
                 let back = image::open(&path).unwrap();
@@ -358,9 +383,51 @@ mod tests {
         // In reverse order every row waits for the top one: the whole image is
         // held, and the file is still the same.
         let path = dir.path().join("reverse.png");
-        let held = write_in_tiles(&img, &path, PngBits::Eight, Channels::Rgb, 300 * 16, true);
+        let held = write_in_tiles(&img, &path, Bits::Eight.into(), Channels::Rgb, 300 * 16, true);
         assert!(held <= (width * height * 3 + height * 4) as usize, "{held}");
         assert!(std::fs::read(&path).unwrap() == std::fs::read(&whole).unwrap());
+    }
+
+    #[test]
+    fn a_ppm_holds_the_png_s_samples_after_its_header_in_tiles_of_any_order() {
+        let (width, height) = (300, 200);
+        let img = image(width, height);
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("whole.png");
+        crate::write_image(&img, &png, Bits::Eight).unwrap();
+        let png = image::open(&png).unwrap().to_rgb8().into_raw();
+        for (bits, sample) in [(Bits::Eight, 3), (Bits::Sixteen, 6)] {
+            let raw = Samples { bits, ppm: PpmForm::Raw };
+            let whole = dir.path().join(format!("whole{sample}.ppm"));
+            crate::write_image(&img, &whole, bits).unwrap();
+            let bytes = std::fs::read(&whole).unwrap();
+            let header = if bits == Bits::Eight { "P6\n300 200\n255\n" } else { "P6\n300 200\n65535\n" };
+            assert!(bytes.starts_with(header.as_bytes()), "{:?}", &bytes[..16]);
+            assert_eq!(bytes.len(), header.len() + (width * height) as usize * sample);
+            let read = crate::read_ppm(&bytes).unwrap();
+            let expected: Vec<u16> = img.display.iter().flat_map(|p| [p[0], p[1], p[2]]).map(|v| match bits {
+                Bits::Eight => u16::from(crate::output::to_u8(v)),
+                Bits::Sixteen => crate::output::to_u16(v),
+            }).collect();
+            assert_eq!(read.samples, expected);
+            if bits == Bits::Eight {
+                assert!(bytes[header.len()..] == png[..], "an 8-bit PPM's samples are the PNG's bytes");
+            }
+            for (tile_pixels, reverse, band_rows) in [(300 * 16, false, 16), (7, false, 1), (300 * 16, true, 200)] {
+                let path = dir.path().join(format!("{sample}-{tile_pixels}-{reverse}.ppm"));
+                let held = write_in_tiles(&img, &path, raw, Channels::Rgb, tile_pixels, reverse);
+                assert!(held <= width as usize * band_rows * sample + band_rows.max(4) * 4, "{held} bytes held");
+                assert!(std::fs::read(&path).unwrap() == bytes, "tiles change the file");
+            }
+            // Plain: the same samples as text, in short lines.
+            let path = dir.path().join(format!("plain{sample}.ppm"));
+            write_in_tiles(&img, &path, Samples { bits, ppm: PpmForm::Plain }, Channels::Rgb, 90, false);
+            let text = std::fs::read(&path).unwrap();
+            assert!(text.starts_with(header.replace("P6", "P3").as_bytes()));
+            assert!(text.split(|&b| b == b'\n').all(|line| line.len() <= 70));
+            let plain = crate::read_ppm(&text).unwrap();
+            assert_eq!((plain.form, plain.samples, plain.maxval), (PpmForm::Plain, read.samples, read.maxval));
+        }
     }
 
     #[test]
@@ -370,7 +437,7 @@ mod tests {
         let (rgb, z) = (Channels::Rgb, Channels::Single("Z"));
         for (name, channels, count) in [("rgb.pfm", rgb, 3), ("rgb.exr", rgb, 3), ("z.pfm", z, 1), ("z.exr", z, 1)] {
             let path = dir.path().join(name);
-            let held = write_in_tiles(&img, &path, PngBits::Eight, channels, 90, false);
+            let held = write_in_tiles(&img, &path, Bits::Eight.into(), channels, 90, false);
             assert_eq!(held, 40 * 30 * count * 4, "{name}");
         }
         let (w, h, rgb) = read_pfm(&std::fs::read(dir.path().join("rgb.pfm")).unwrap()).unwrap();
@@ -409,15 +476,15 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let img = image(20, 10);
         let listing = || std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect::<Vec<_>>();
-        for name in ["a.png", "a.exr"] {
+        for name in ["a.png", "a.ppm", "a.exr"] {
             let path = dir.path().join(name);
             // Abandoned halfway, as when a render fails: no file at all.
-            let mut sink = ImageSink::create(&path, 20, 10, PngBits::Eight, Channels::Rgb).unwrap();
+            let mut sink = ImageSink::create(&path, 20, 10, Bits::Eight.into(), Channels::Rgb).unwrap();
             sink.paste(&crop(&img, Region { x0: 0, y0: 0, x1: 20, y1: 4 }), 0, 0).unwrap();
             drop(sink);
             assert!(listing().is_empty(), "{name}: {:?}", listing());
             // Finished but not committed: still nothing at the path.
-            let mut sink = ImageSink::create(&path, 20, 10, PngBits::Eight, Channels::Rgb).unwrap();
+            let mut sink = ImageSink::create(&path, 20, 10, Bits::Eight.into(), Channels::Rgb).unwrap();
             sink.paste(&img, 0, 0).unwrap();
             let staged = sink.finish().unwrap();
             assert!(!path.exists());
@@ -426,7 +493,7 @@ mod tests {
             std::fs::remove_file(&path).unwrap();
         }
         let path = dir.path().join("b.png");
-        let mut sink = ImageSink::create(&path, 20, 10, PngBits::Eight, Channels::Rgb).unwrap();
+        let mut sink = ImageSink::create(&path, 20, 10, Bits::Eight.into(), Channels::Rgb).unwrap();
         let half = crop(&img, Region { x0: 0, y0: 0, x1: 20, y1: 5 });
         sink.paste(&half, 0, 0).unwrap();
         let e = sink.paste(&half, 0, 2).unwrap_err().to_string();

@@ -1,8 +1,8 @@
 //! Parts of one image rendered apart (`glint render --region` or `--shard`),
 //! and putting them back together. Each part's placement — the full image's
 //! size and the region the part holds — is recorded beside it in
-//! `PART.json` (`shard0.png` → `shard0.png.json`), one format for PNG, EXR
-//! and PFM alike (PFM has no room for metadata), with the shard `I/N` the
+//! `PART.json` (`shard0.png` → `shard0.png.json`), one format for PNG, PPM,
+//! EXR and PFM alike (PPM and PFM have no room for metadata), with the shard `I/N` the
 //! part is, if it is one, so that stitching can name the shards missing.
 //! Stitching reads each part
 //! back as the values it was written from and writes the whole with the same
@@ -10,8 +10,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::output::{write_atomically, Channels, Format, Image, PngBits};
-use crate::{read_pfm_channels, GpuError, ImageSink, Region};
+use crate::output::{write_atomically, Bits, Channels, Format, Image, Samples};
+use crate::{read_pfm_channels, read_ppm, ImageError, ImageSink, PpmForm, Region};
 
 /// Where a part belongs: in an image of `width` × `height`, at `region`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,7 +32,7 @@ pub fn placement_path(image: &Path) -> PathBuf {
 }
 
 /// Records, atomically, that the part at `image` holds `placement`.
-pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), GpuError> {
+pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), ImageError> {
     let path = placement_path(image);
     let Region { x0, y0, x1, y1 } = placement.region;
     let shard = placement.shard.map_or(String::new(), |(index, count)| format!(", \"shard\": [{index}, {count}]"));
@@ -40,7 +40,7 @@ pub fn write_placement(image: &Path, placement: &Placement) -> Result<(), GpuErr
         "{{\"glint_part\": 1, \"image\": [{}, {}], \"region\": [{x0}, {y0}, {x1}, {y1}]{shard}}}\n",
         placement.width, placement.height
     );
-    write_atomically(&path, text.as_bytes()).map_err(|e| GpuError::Output(format!("{}: {e}", path.display())))
+    write_atomically(&path, text.as_bytes()).map_err(|e| ImageError::Output(format!("{}: {e}", path.display())))
 }
 
 /// The placement recorded beside the part at `image`.
@@ -91,15 +91,25 @@ pub fn read_placement(image: &Path) -> Result<Placement, String> {
 /// How a part's values are stored, which the whole must keep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Encoding {
-    Png(PngBits),
+    /// PNG or PPM.
+    Display(Format, Samples),
     Float(Format, Channels),
 }
 
 impl std::fmt::Display for Encoding {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Encoding::Png(PngBits::Eight) => f.write_str("an 8-bit PNG"),
-            Encoding::Png(PngBits::Sixteen) => f.write_str("a 16-bit PNG"),
+            Encoding::Display(format, Samples { bits, ppm }) => {
+                let bits = match bits {
+                    Bits::Eight => "an 8-bit",
+                    Bits::Sixteen => "a 16-bit",
+                };
+                match (format, ppm) {
+                    (Format::Ppm, PpmForm::Raw) => write!(f, "{bits} raw PPM (P6)"),
+                    (Format::Ppm, PpmForm::Plain) => write!(f, "{bits} plain PPM (P3)"),
+                    _ => write!(f, "{bits} PNG"),
+                }
+            }
             Encoding::Float(format, Channels::Rgb) => write!(f, "an RGB {}", format!("{format:?}").to_ascii_uppercase()),
             Encoding::Float(format, Channels::Single(name)) => {
                 write!(f, "a one-channel ({name}) {}", format!("{format:?}").to_ascii_uppercase())
@@ -120,18 +130,17 @@ struct Part {
 /// `output` (the parts' format), and returns its width and height. The parts
 /// must be of one image, stored alike, and cover it exactly once; each
 /// problem is one line naming a file.
-pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> {
-    let parts: Vec<Part> = parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>().map_err(GpuError::Stitch)?;
-    let first = parts.first().ok_or_else(|| GpuError::Stitch("no parts to stitch".into()))?;
+pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), ImageError> {
+    let parts: Vec<Part> = parts.iter().map(|p| read_part(p)).collect::<Result<_, _>>().map_err(ImageError::Stitch)?;
+    let first = parts.first().ok_or_else(|| ImageError::Stitch("no parts to stitch".into()))?;
     let (width, height, encoding) = (first.placement.width, first.placement.height, first.encoding);
     let wanted = Format::from_path(output)?;
     let format_of = |e: Encoding| match e {
-        Encoding::Png(_) => Format::Png,
-        Encoding::Float(format, _) => format,
+        Encoding::Display(format, _) | Encoding::Float(format, _) => format,
     };
     if format_of(encoding) != wanted {
         let extension = format!("{:?}", format_of(encoding)).to_ascii_lowercase();
-        return Err(GpuError::Stitch(format!(
+        return Err(ImageError::Stitch(format!(
             "{}: the parts are .{extension} files and stitching keeps their format: name the output .{extension}",
             output.display()
         )));
@@ -139,7 +148,7 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
     for part in &parts {
         let shown = part.path.display();
         if (part.placement.width, part.placement.height) != (width, height) {
-            return Err(GpuError::Stitch(format!(
+            return Err(ImageError::Stitch(format!(
                 "{shown}: is a part of a {}x{} image, but {} is a part of a {width}x{height} one",
                 part.placement.width,
                 part.placement.height,
@@ -147,7 +156,7 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
             )));
         }
         if part.encoding != encoding {
-            return Err(GpuError::Stitch(format!(
+            return Err(ImageError::Stitch(format!(
                 "{shown}: is {}, but {} is {encoding}",
                 part.encoding,
                 first.path.display()
@@ -155,12 +164,12 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
         }
     }
     check_coverage(&parts, width, height)?;
-    let (bits, channels) = match encoding {
-        Encoding::Png(bits) => (bits, Channels::Rgb),
-        Encoding::Float(_, channels) => (PngBits::Eight, channels),
+    let (samples, channels) = match encoding {
+        Encoding::Display(_, samples) => (samples, Channels::Rgb),
+        Encoding::Float(_, channels) => (Samples::default(), channels),
     };
-    let mut sink = ImageSink::create(output, width, height, bits, channels)?;
-    // In reading order a PNG's rows are encoded as each strip of parts completes them.
+    let mut sink = ImageSink::create(output, width, height, samples, channels)?;
+    // In reading order a PNG's or PPM's rows are written as each strip of parts completes them.
     let mut parts = parts;
     parts.sort_by_key(|p| (p.placement.region.y0, p.placement.region.x0));
     for part in &parts {
@@ -172,11 +181,11 @@ pub fn stitch(parts: &[PathBuf], output: &Path) -> Result<(u32, u32), GpuError> 
 
 /// Checks that the parts' regions cover the `width` × `height` image exactly
 /// once: no two share a pixel and none is missing.
-fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), GpuError> {
+fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), ImageError> {
     for (i, a) in parts.iter().enumerate() {
         for b in &parts[i + 1..] {
             if a.placement.region.overlaps(&b.placement.region) {
-                return Err(GpuError::Stitch(format!(
+                return Err(ImageError::Stitch(format!(
                     "{} (region {}) and {} (region {}) overlap",
                     a.path.display(),
                     a.placement.region,
@@ -190,7 +199,7 @@ fn check_coverage(parts: &[Part], width: u32, height: u32) -> Result<(), GpuErro
     if let Some((x, y)) = first_uncovered(&regions, width, height) {
         let covered: u64 = regions.iter().map(Region::pixels).sum();
         let missing = u64::from(width) * u64::from(height) - covered;
-        return Err(GpuError::Stitch(format!(
+        return Err(ImageError::Stitch(format!(
             "the parts leave {missing} pixels of the {width}x{height} image uncovered, the first at ({x}, {y}): {}",
             missing_shards(parts).unwrap_or_else(|| "a part is missing".into())
         )));
@@ -278,14 +287,24 @@ fn decode(bytes: &[u8], format: Format) -> Result<(Image, Encoding), String> {
             let (width, height) = (decoded.width(), decoded.height());
             // Dividing by the largest value is what writing multiplies back.
             let scaled = |rgb: [f32; 3], max: f32| [rgb[0] / max, rgb[1] / max, rgb[2] / max, 1.0];
-            let (values, bits): (Vec<[f32; 4]>, PngBits) = match decoded {
-                image::DynamicImage::ImageRgb8(rgb) => (rgb.pixels().map(|p| scaled(p.0.map(f32::from), 255.0)).collect(), PngBits::Eight),
+            let (values, bits): (Vec<[f32; 4]>, Bits) = match decoded {
+                image::DynamicImage::ImageRgb8(rgb) => (rgb.pixels().map(|p| scaled(p.0.map(f32::from), 255.0)).collect(), Bits::Eight),
                 image::DynamicImage::ImageRgb16(rgb) => {
-                    (rgb.pixels().map(|p| scaled(p.0.map(f32::from), 65535.0)).collect(), PngBits::Sixteen)
+                    (rgb.pixels().map(|p| scaled(p.0.map(f32::from), 65535.0)).collect(), Bits::Sixteen)
                 }
                 _ => return Err("not an RGB PNG as `glint render` writes".into()),
             };
-            Ok((image_of(width, height, values), Encoding::Png(bits)))
+            Ok((image_of(width, height, values), Encoding::Display(Format::Png, bits.into())))
+        }
+        Format::Ppm => {
+            let ppm = read_ppm(bytes)?;
+            let bits = match ppm.maxval {
+                255 => Bits::Eight,
+                65535 => Bits::Sixteen,
+                other => return Err(format!("not a PPM as `glint render` writes: its maxval is {other}, not 255 or 65535")),
+            };
+            let values = ppm.display_values().collect::<Vec<_>>().chunks_exact(3).map(|c| [c[0], c[1], c[2], 1.0]).collect();
+            Ok((image_of(ppm.width, ppm.height, values), Encoding::Display(Format::Ppm, Samples { bits, ppm: ppm.form })))
         }
         Format::Pfm => {
             let (width, height, channels, values) = read_pfm_channels(bytes)?;
