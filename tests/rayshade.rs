@@ -55,9 +55,7 @@ fn facing_square(lights: &str, surface: &str) -> Scene {
 }
 
 fn centre(scene: &Scene) -> [f32; 3] {
-    let image = render_options(scene, Acceleration::Bvh, RenderOptions::default()).0;
-    let [r, g, b, _] = image.linear_at(4, 4);
-    [r, g, b]
+    render_options(scene, Acceleration::Bvh, RenderOptions::default()).0.linear_at(4, 4)
 }
 
 /// ambient·I_a + I·(diffuse·(N·L) + specular·(R·L)^specpow), with R the eye
