@@ -444,6 +444,9 @@ impl<'a> Parser<'a> {
         let material = self.surface_of(&p)?;
         let point = self.vec3("point")?;
         let normal = self.vec3("normal")?;
+        let Some(normal) = crate::unit(normal) else {
+            return Err(self.error(&p, "plane: the normal is a zero vector"));
+        };
         self.push_built(&p, material, Shape::plane(point, normal))
     }
 

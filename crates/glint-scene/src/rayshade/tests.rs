@@ -138,7 +138,7 @@ fn primitives() {
          polygon s\n0 0 0 1 0 0 1 1 0\n0 1 0\n\
          triangle s 0 0 0 1 0 0 0 1 0\n\
          triangle s 0 0 0 0 0 2  1 0 0 0 0 1  0 1 0 0 0 1\n\
-         plane s 0 0 -1 0 0 1\n",
+         plane s 0 0 -1 0 0 3\n",
     )
     .unwrap();
     let shapes: Vec<&Shape> = s.objects.iter().map(|o| &o.shapes[0]).collect();
@@ -150,7 +150,7 @@ fn primitives() {
     assert_eq!(*shapes[3], Shape::polygon(square).unwrap().0);
     assert_eq!(*shapes[4], Shape::triangle([Vec3::ZERO, Vec3::X, Vec3::Y], None).unwrap());
     assert_eq!(*shapes[5], Shape::triangle([Vec3::ZERO, Vec3::X, Vec3::Y], Some([Vec3::Z; 3])).unwrap(), "normals made unit");
-    assert_eq!(*shapes[6], Shape::plane(-Vec3::Z, Vec3::Z).unwrap());
+    assert_eq!(*shapes[6], Shape::plane(-Vec3::Z, Vec3::Z).unwrap(), "the normal made unit");
     assert!(s.objects.iter().all(|o| o.material == 0));
 }
 
@@ -193,6 +193,7 @@ fn errors_name_the_place_and_the_problem() {
         ("surface s transp 0.5 index 0\n", "t.ray:1:28: index must be positive, found 0"),
         ("surface s translu 1 1 1 1 2\n", "t.ray:1:11: Glint does not read Rayshade's `translu` (diffuse transmission)"),
         ("maxdepth 16\n", "t.ray:1:10: maxdepth: `16` is not a whole number in 0..=15"),
+        ("surface s\nplane s 0 0 0 0 0 0\n", "t.ray:2:1: plane: the normal is a zero vector"),
     ];
     for (text, want) in cases {
         assert_eq!(error(text), want, "{text}");

@@ -193,7 +193,11 @@ pub(crate) fn ray_statement(mode: Mode) -> BoxedStrategy<String> {
         2 => (positive(mode), numbers(mode, 3)).prop_map(|(i, p)| format!("light {i} point {p}")),
         1 => (positives(mode, 3), numbers(mode, 3)).prop_map(|(i, d)| format!("light {i} directional {d}")),
         1 => positive(mode).prop_map(|i| format!("light {i} ambient")),
-        1 => ray_surface(mode, ray_surface_name()),
+        // Sane files define new names; Wild ones also define a name again.
+        1 => ray_surface(mode, match mode {
+            Mode::Sane => (0u32..1_000_000).prop_map(|n| format!("x{n}")).boxed(),
+            Mode::Wild => ray_surface_name(),
+        }),
         4 => (surf(), positive(mode), numbers(mode, 3)).prop_map(|(s, r, c)| format!("sphere {s} {r} {c}")),
         2 => (surf(), positive(mode), numbers(mode, 3), positive(mode), numbers(mode, 3))
             .prop_map(|(s, br, b, ar, a)| format!("cone {s} {br} {b}\n{ar} {a}")),
@@ -210,7 +214,8 @@ pub(crate) fn ray_statement(mode: Mode) -> BoxedStrategy<String> {
 
 pub(crate) fn ray_text(mode: Mode) -> BoxedStrategy<String> {
     let header = (
-        (1u32..40, 1u32..40).prop_map(|(w, h)| format!("screen {w} {h}\neyep 0 -5 1\nlookp 0 0 0\nup 0 0 1")),
+        // Near square, so that the default fov of 45 stays below 180 vertically.
+        (16u32..40, 16u32..40).prop_map(|(w, h)| format!("screen {w} {h}\neyep 0 -5 1\nlookp 0 0 0\nup 0 0 1")),
         prop::collection::vec(ray_surface(mode, Just(String::new()).boxed()), 3),
     )
         .prop_map(|(view, surfaces)| {
