@@ -118,7 +118,7 @@ struct Parser<'a> {
     up: Option<(Vec3, Token<'a>)>,
     /// `fov H [V]` and where it was.
     fov: Option<(f64, Option<f64>, Token<'a>)>,
-    screen: Option<(u32, u32)>,
+    screen: Option<(u32, u32, Token<'a>)>,
     background: Option<Vec3>,
     max_depth: Option<u32>,
     cutoff: Option<f32>,
@@ -247,7 +247,7 @@ impl<'a> Parser<'a> {
                 "screen" => {
                     let w = self.whole("screen width", 1..=MAX_IMAGE_SIDE)?;
                     let h = self.whole("screen height", 1..=MAX_IMAGE_SIDE)?;
-                    self.screen = Some((w, h));
+                    self.screen = Some((w, h, t));
                 }
                 "background" => self.background = Some(self.color("background")?),
                 "sample" => self.sample(t)?,
@@ -497,7 +497,7 @@ impl<'a> Parser<'a> {
     }
 
     fn scene(mut self) -> Result<Scene, LoadError> {
-        let (width, height) = self.screen.unwrap_or((DEFAULT_SCREEN, DEFAULT_SCREEN));
+        let (width, height) = self.screen.map_or((DEFAULT_SCREEN, DEFAULT_SCREEN), |(w, h, _)| (w, h));
         let (h, v, fov_token) = match self.fov {
             Some((h, v, t)) => (h, v, Some(t)),
             None => (DEFAULT_HFOV, None, None),
@@ -505,7 +505,8 @@ impl<'a> Parser<'a> {
         let (fov, h_glint) = fov_y(h, v, width, height);
         let place = |parser: &Self, token: Option<Token>| token.map(|t| Location::of_offset(parser.source, t.offset));
         if !(fov > 0.0 && fov < 180.0 && h > 0.0 && h < 180.0) {
-            let location = place(&self, fov_token);
+            // Without a `fov`, the screen's shape made the vertical angle.
+            let location = place(&self, fov_token.or(self.screen.map(|s| s.2)));
             return Err(LoadError::new(self.path, location, format!("fov: the field of view must be between 0 and 180 degrees, found {h} (horizontal) and {fov} (vertical)")));
         }
         if (h_glint - h).abs() > 1.0e-3 {

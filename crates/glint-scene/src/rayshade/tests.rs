@@ -193,6 +193,7 @@ fn errors_name_the_place_and_the_problem() {
         ("surface s transp 0.5 index 0\n", "t.ray:1:28: index must be positive, found 0"),
         ("surface s translu 1 1 1 1 2\n", "t.ray:1:11: Glint does not read Rayshade's `translu` (diffuse transmission)"),
         ("maxdepth 16\n", "t.ray:1:10: maxdepth: `16` is not a whole number in 0..=15"),
+        ("screen 1 16\n", "t.ray:1:1: fov: the field of view must be between 0 and 180 degrees, found 45 (horizontal) and 720 (vertical)"),
         ("surface s\nplane s 0 0 0 0 0 0\n", "t.ray:2:1: plane: the normal is a zero vector"),
     ];
     for (text, want) in cases {
