@@ -204,6 +204,11 @@ const REGRESSIONS: &[&[(&str, &[u8])]] = &[
     // and panics. Also tests/bad_input/obj_mtl_color_two_values.obj.
     &[("grey.obj", b"mtllib grey.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"), ("grey.mtl", b"newmtl a\nKd 0.5\n")],
     &[("pair.obj", b"mtllib pair.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"), ("pair.mtl", b"newmtl a\nKs 1 0\n")],
+    // A Rayshade plane with a zero normal loaded, and failed validation.
+    &[("plane.ray", b"surface s0\nplane s0 0 0 0 0 0 0\n")],
+    // A Rayshade screen so tall that the default fov of 45 is 720 degrees
+    // vertically: an error that named no line.
+    &[("tall.ray", b"screen 1 16\n")],
 ];
 
 #[test]
