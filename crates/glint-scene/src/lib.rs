@@ -20,6 +20,7 @@ mod shape;
 pub mod spd;
 pub mod suggest;
 pub mod test_rng;
+mod token_reader;
 mod toml_errors;
 pub mod toml_scene;
 pub mod toml_write;

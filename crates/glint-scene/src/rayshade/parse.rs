@@ -9,7 +9,7 @@ use glam::Vec3;
 
 use super::{fov_y, material, Surface};
 use crate::scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
-use crate::shape::ShapeProblem;
+use crate::token_reader::{Cursor, Token, TokenReader};
 use crate::{
     quoted, Attenuation, Camera, Light, LightKind, LoadError, Location, Material, Object, Projection, RenderSettings,
     Scene, ShadowMode, Shape,
@@ -33,13 +33,6 @@ const UNSUPPORTED: &[&str] = &[
     "grid", "list", "csg", "union", "intersect", "difference", "end", "object", "define", "name", "applysurf",
     "instance", "translate", "rotate", "scale", "transform", "texture", "atmosphere", "fog", "fogdeck", "mist",
 ];
-
-#[derive(Debug, Clone, Copy)]
-struct Token<'a> {
-    text: &'a str,
-    /// Byte offset in the source.
-    offset: usize,
-}
 
 /// Splits `source` into tokens, skipping `/* … */` and `//` comments.
 fn tokenize<'a>(source: &'a str, path: &Path) -> Result<Vec<Token<'a>>, LoadError> {
@@ -66,27 +59,24 @@ fn tokenize<'a>(source: &'a str, path: &Path) -> Result<Vec<Token<'a>>, LoadErro
         i = end;
     }
     let mut tokens = Vec::with_capacity(source.len() / 6);
-    let mut start = None;
+    let (mut start, mut line) = (None, 1);
     for (i, byte) in code.iter().chain(std::iter::once(&b' ')).enumerate() {
         match (byte.is_ascii_whitespace(), start) {
             (true, Some(s)) => {
-                tokens.push(Token { text: &source[s..i], offset: s });
+                tokens.push(Token { text: &source[s..i], offset: s, line });
                 start = None;
             }
             (false, None) => start = Some(i),
             _ => {}
         }
+        line += usize::from(*byte == b'\n');
     }
     Ok(tokens)
 }
 
 pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
     let mut parser = Parser {
-        source,
-        path,
-        tokens: tokenize(source, path)?,
-        pos: 0,
-        statement: None,
+        cursor: Cursor::new(source, path, tokenize(source, path)?),
         eyep: None,
         lookp: None,
         up: None,
@@ -98,6 +88,7 @@ pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
         ambient: None,
         lights: Vec::new(),
         surfaces: HashMap::new(),
+        current_material: 0,
         materials: Vec::new(),
         objects: Vec::new(),
         warnings: Vec::new(),
@@ -107,12 +98,7 @@ pub fn parse(source: &str, path: &Path) -> Result<Scene, LoadError> {
 }
 
 struct Parser<'a> {
-    source: &'a str,
-    path: &'a Path,
-    tokens: Vec<Token<'a>>,
-    pos: usize,
-    /// The keyword being read, for messages about its operands.
-    statement: Option<Token<'a>>,
+    cursor: Cursor<'a>,
     eyep: Option<(Vec3, Token<'a>)>,
     lookp: Option<(Vec3, Token<'a>)>,
     up: Option<(Vec3, Token<'a>)>,
@@ -126,77 +112,41 @@ struct Parser<'a> {
     lights: Vec<Light>,
     /// Material index by surface name.
     surfaces: HashMap<&'a str, usize>,
+    /// The surface the primitive being read names.
+    current_material: usize,
     materials: Vec<Material>,
     objects: Vec<Object>,
     warnings: Vec<LoadError>,
 }
 
-impl<'a> Parser<'a> {
-    fn error(&self, token: &Token, message: impl Into<String>) -> LoadError {
-        LoadError::new(self.path, Some(Location::of_offset(self.source, token.offset)), message)
+impl<'a> TokenReader<'a> for Parser<'a> {
+    fn cursor(&self) -> &Cursor<'a> {
+        &self.cursor
     }
 
-    fn warn(&mut self, token: &Token, message: impl Into<String>) {
-        let warning = self.error(token, message);
-        self.warnings.push(warning);
+    fn cursor_mut(&mut self) -> &mut Cursor<'a> {
+        &mut self.cursor
     }
 
-    fn statement_name(&self) -> String {
-        match &self.statement {
-            Some(t) => format!("{} (line {})", quoted(t.text), Location::of_offset(self.source, t.offset).line),
-            None => "the file".into(),
+    fn warnings(&mut self) -> &mut Vec<LoadError> {
+        &mut self.warnings
+    }
+
+    fn push(&mut self, shapes: Vec<Shape>) {
+        self.objects.push(Object { material: self.current_material, shapes });
+    }
+
+    fn not_a_number(&self, token: &Token, what: &str) -> String {
+        if token.text.starts_with('(') {
+            return format!("{what}: Glint does not evaluate Rayshade's expressions in parentheses; write the number");
         }
+        format!("expected a number ({what}) for {}, found {}", self.statement_name(), quoted(token.text))
     }
+}
 
-    fn peek(&self) -> Option<Token<'a>> {
-        self.tokens.get(self.pos).copied()
-    }
-
+impl<'a> Parser<'a> {
     fn next_is_number(&self) -> bool {
         self.peek().is_some_and(|t| t.text.parse::<f64>().is_ok())
-    }
-
-    /// The next token, which must exist: `what` says what was expected.
-    fn expect(&mut self, what: &str) -> Result<Token<'a>, LoadError> {
-        match self.peek() {
-            Some(t) => {
-                self.pos += 1;
-                Ok(t)
-            }
-            None => {
-                let message = format!("unexpected end of file: {} needs {what}", self.statement_name());
-                Err(match self.statement.or_else(|| self.tokens.last().copied()) {
-                    Some(t) => self.error(&t, message),
-                    None => LoadError::new(self.path, None, message),
-                })
-            }
-        }
-    }
-
-    fn number(&mut self, what: &str) -> Result<f32, LoadError> {
-        let t = self.expect(what)?;
-        match t.text.parse::<f32>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(self.error(&t, format!("{what}: {} is not a finite number", quoted(t.text)))),
-            Err(_) if t.text.starts_with('(') => Err(self.error(
-                &t,
-                format!("{what}: Glint does not evaluate Rayshade's expressions in parentheses; write the number"),
-            )),
-            Err(_) => Err(self.error(
-                &t,
-                format!("expected a number ({what}) for {}, found {}", self.statement_name(), quoted(t.text)),
-            )),
-        }
-    }
-
-    fn non_negative(&mut self, what: &str) -> Result<f32, LoadError> {
-        let at = self.pos;
-        let v = self.number(what)?;
-        if v < 0.0 {
-            let t = self.tokens[at];
-            return Err(self.error(&t, format!("{what} must not be negative, found {v}")));
-        }
-        Ok(v)
     }
 
     fn whole(&mut self, what: &str, range: std::ops::RangeInclusive<u32>) -> Result<u32, LoadError> {
@@ -204,22 +154,6 @@ impl<'a> Parser<'a> {
         t.text.parse::<u32>().ok().filter(|n| range.contains(n)).ok_or_else(|| {
             self.error(&t, format!("{what}: {} is not a whole number in {}..={}", quoted(t.text), range.start(), range.end()))
         })
-    }
-
-    fn vec3(&mut self, what: &str) -> Result<Vec3, LoadError> {
-        Ok(Vec3::new(
-            self.number(&format!("{what} x"))?,
-            self.number(&format!("{what} y"))?,
-            self.number(&format!("{what} z"))?,
-        ))
-    }
-
-    fn color(&mut self, what: &str) -> Result<Vec3, LoadError> {
-        Ok(Vec3::new(
-            self.non_negative(&format!("{what} red"))?,
-            self.non_negative(&format!("{what} green"))?,
-            self.non_negative(&format!("{what} blue"))?,
-        ))
     }
 
     /// The numbers up to the next word.
@@ -233,8 +167,8 @@ impl<'a> Parser<'a> {
 
     fn run(&mut self) -> Result<(), LoadError> {
         while let Some(t) = self.peek() {
-            self.pos += 1;
-            let previous = self.statement.replace(t);
+            self.cursor.pos += 1;
+            let previous = self.cursor.statement.replace(t);
             match t.text {
                 "eyep" => self.eyep = Some((self.vec3("eyep")?, t)),
                 "lookp" => self.lookp = Some((self.vec3("lookp")?, t)),
@@ -265,7 +199,7 @@ impl<'a> Parser<'a> {
                     return Err(self.error(&t, format!("Glint does not read Rayshade's `{word}`")));
                 }
                 word if word.parse::<f64>().is_ok() => {
-                    self.statement = previous;
+                    self.cursor.statement = previous;
                     return Err(self.error(&t, format!("unexpected number {}: too many values for {}", quoted(word), self.statement_name())));
                 }
                 word => return Err(self.error(&t, format!("unknown keyword {}", quoted(word)))),
@@ -278,7 +212,7 @@ impl<'a> Parser<'a> {
     fn sample(&mut self, t: Token<'a>) -> Result<(), LoadError> {
         let n = self.whole("samples", 1..=64)?;
         if self.peek().is_some_and(|p| p.text == "jitter" || p.text == "nojitter") {
-            self.pos += 1;
+            self.cursor.pos += 1;
         }
         if n > 1 {
             self.warn(&t, format!("sample {n}: Glint traces one sample per pixel, at its centre, unless `glint render --spp` asks for {}", n * n));
@@ -288,18 +222,18 @@ impl<'a> Parser<'a> {
 
     /// `light I point x y z`, `light I directional x y z` or `light I ambient`.
     fn light(&mut self, t: Token<'a>) -> Result<(), LoadError> {
-        let at = self.pos;
+        let at = self.cursor.pos;
         let intensity = self.numbers("light intensity")?;
         let color = match intensity[..] {
             [i] => Vec3::splat(i),
             [r, g, b] => Vec3::new(r, g, b),
             _ => {
-                let t = self.tokens.get(at).copied().unwrap_or(t);
+                let t = self.cursor.tokens.get(at).copied().unwrap_or(t);
                 return Err(self.error(&t, format!("light: the intensity is one number or three (r g b), found {}", intensity.len())));
             }
         };
         if color.min_element() < 0.0 {
-            return Err(self.error(&self.tokens[at], "light: the intensity must not be negative"));
+            return Err(self.error(&self.cursor.tokens[at], "light: the intensity must not be negative"));
         }
         let kind = self.expect("a kind (point, directional or ambient)")?;
         let kind = match kind.text {
@@ -338,7 +272,7 @@ impl<'a> Parser<'a> {
         }
         let mut surface = Surface::default();
         while let Some(c) = self.peek() {
-            self.statement = Some(c);
+            self.cursor.statement = Some(c);
             match c.text {
                 "ambient" => surface.ambient = self.take(|p| p.color("ambient"))?,
                 "diffuse" => surface.diffuse = self.take(|p| p.color("diffuse"))?,
@@ -348,14 +282,14 @@ impl<'a> Parser<'a> {
                 "reflect" => surface.reflect = self.take(|p| p.non_negative("reflect"))?,
                 "transp" => surface.transp = self.take(|p| p.non_negative("transp"))?,
                 "index" => {
-                    let at = self.pos + 1;
+                    let at = self.cursor.pos + 1;
                     surface.index = self.take(|p| p.number("index"))?;
                     if surface.index <= 0.0 {
-                        return Err(self.error(&self.tokens[at], format!("index must be positive, found {}", surface.index)));
+                        return Err(self.error(&self.cursor.tokens[at], format!("index must be positive, found {}", surface.index)));
                     }
                 }
                 "noshadow" => {
-                    self.pos += 1;
+                    self.cursor.pos += 1;
                     self.warn(&c, "noshadow: Glint's surfaces always receive shadows; ignored");
                 }
                 "extinct" => {
@@ -366,7 +300,7 @@ impl<'a> Parser<'a> {
                 _ => break,
             }
         }
-        self.statement = Some(t);
+        self.cursor.statement = Some(t);
         let (material, warning) = material(name.text, &surface).map_err(|e| self.error(&name, e))?;
         if let Some(warning) = warning {
             self.warn(&name, warning);
@@ -378,76 +312,53 @@ impl<'a> Parser<'a> {
 
     /// Reads the operands of the component keyword at the cursor.
     fn take<T>(&mut self, read: impl FnOnce(&mut Self) -> Result<T, LoadError>) -> Result<T, LoadError> {
-        self.pos += 1;
+        self.cursor.pos += 1;
         read(self)
     }
 
     /// The surface a primitive names; Glint needs one (Rayshade would fall
     /// back on a default surface that its guide does not give).
-    fn surface_of(&mut self, keyword: &Token<'a>) -> Result<usize, LoadError> {
+    fn surface_of(&mut self, keyword: &Token<'a>) -> Result<(), LoadError> {
         if self.next_is_number() || self.peek().is_none() {
             return Err(self.error(keyword, format!("`{}` names no surface: Glint needs a surface defined with `surface NAME`", keyword.text)));
         }
         let name = self.expect("a surface")?;
-        self.surfaces
-            .get(name.text)
-            .copied()
-            .ok_or_else(|| self.error(&name, format!("undefined surface {}", quoted(name.text))))
-    }
-
-    /// Adds the shape a primitive describes, or applies the shared policy to
-    /// what stops it being one: a degenerate shape is skipped with a warning,
-    /// one beyond the range of f32 is an error.
-    fn push_built(&mut self, keyword: &Token, material: usize, built: Result<Shape, ShapeProblem>) -> Result<(), LoadError> {
-        match built {
-            Ok(shape) => {
-                self.objects.push(Object { material, shapes: vec![shape] });
-                Ok(())
-            }
-            Err(ShapeProblem::Degenerate(warning)) => {
-                self.warn(keyword, warning);
-                Ok(())
-            }
-            Err(ShapeProblem::Overflows) => Err(self.overflow(keyword)),
-        }
-    }
-
-    fn overflow(&self, keyword: &Token) -> LoadError {
-        self.error(keyword, format!("the `{}` reaches beyond the range of 32-bit floats", keyword.text))
+        self.current_material = *self.surfaces.get(name.text).ok_or_else(|| self.error(&name, format!("undefined surface {}", quoted(name.text))))?;
+        Ok(())
     }
 
     fn sphere(&mut self, s: Token<'a>) -> Result<(), LoadError> {
-        let material = self.surface_of(&s)?;
+        self.surface_of(&s)?;
         let radius = self.non_negative("radius")?;
         let center = self.vec3("centre")?;
-        self.push_built(&s, material, Shape::sphere(center, radius))
+        self.push_built(&s, Shape::sphere(center, radius))
     }
 
     fn cone(&mut self, c: Token<'a>) -> Result<(), LoadError> {
-        let material = self.surface_of(&c)?;
+        self.surface_of(&c)?;
         let base_radius = self.non_negative("base radius")?;
         let base = self.vec3("base")?;
         let apex_radius = self.non_negative("apex radius")?;
         let apex = self.vec3("apex")?;
-        self.push_built(&c, material, Shape::cone(base, base_radius, apex, apex_radius))
+        self.push_built(&c, Shape::cone(base, base_radius, apex, apex_radius))
     }
 
     fn cylinder(&mut self, c: Token<'a>) -> Result<(), LoadError> {
-        let material = self.surface_of(&c)?;
+        self.surface_of(&c)?;
         let radius = self.non_negative("radius")?;
         let base = self.vec3("base")?;
         let apex = self.vec3("apex")?;
-        self.push_built(&c, material, Shape::cone(base, radius, apex, radius))
+        self.push_built(&c, Shape::cone(base, radius, apex, radius))
     }
 
     fn plane(&mut self, p: Token<'a>) -> Result<(), LoadError> {
-        let material = self.surface_of(&p)?;
+        self.surface_of(&p)?;
         let point = self.vec3("point")?;
         let normal = self.vec3("normal")?;
         let Some(normal) = crate::unit(normal) else {
             return Err(self.error(&p, "plane: the normal is a zero vector"));
         };
-        self.push_built(&p, material, Shape::plane(point, normal))
+        self.push_built(&p, Shape::plane(point, normal))
     }
 
     /// The vertices of a polygon or triangle: every number up to the next word.
@@ -460,23 +371,17 @@ impl<'a> Parser<'a> {
     }
 
     fn polygon(&mut self, p: Token<'a>) -> Result<(), LoadError> {
-        let material = self.surface_of(&p)?;
+        self.surface_of(&p)?;
         let vertices = self.points(&p)?;
         if vertices.len() < 3 {
             return Err(self.error(&p, format!("polygon needs at least three vertices, found {}", vertices.len())));
         }
-        let built = Shape::polygon(vertices).map(|(shape, non_planar)| {
-            if let Some(warning) = non_planar {
-                self.warn(&p, warning);
-            }
-            shape
-        });
-        self.push_built(&p, material, built)
+        self.push_polygon(&p, vertices)
     }
 
     /// `triangle p1 p2 p3`, or a Phong triangle `p1 n1 p2 n2 p3 n3`.
     fn triangle(&mut self, t: Token<'a>) -> Result<(), LoadError> {
-        let material = self.surface_of(&t)?;
+        self.surface_of(&t)?;
         let points = self.points(&t)?;
         let (vertices, normals) = match points[..] {
             [a, b, c] => ([a, b, c], None),
@@ -493,7 +398,7 @@ impl<'a> Parser<'a> {
             }
             None => None,
         };
-        self.push_built(&t, material, Shape::triangle(vertices, normals))
+        self.push_built(&t, Shape::triangle(vertices, normals))
     }
 
     fn scene(mut self) -> Result<Scene, LoadError> {
@@ -503,11 +408,11 @@ impl<'a> Parser<'a> {
             None => (DEFAULT_HFOV, None, None),
         };
         let (fov, h_glint) = fov_y(h, v, width, height);
-        let place = |parser: &Self, token: Option<Token>| token.map(|t| Location::of_offset(parser.source, t.offset));
+        let place = |parser: &Self, token: Option<Token>| token.map(|t| parser.location(&t));
         if !(fov > 0.0 && fov < 180.0 && h > 0.0 && h < 180.0) {
             // Without a `fov`, the screen's shape made the vertical angle.
             let location = place(&self, fov_token.or(self.screen.map(|s| s.2)));
-            return Err(LoadError::new(self.path, location, format!("fov: the field of view must be between 0 and 180 degrees, found {h} (horizontal) and {fov} (vertical)")));
+            return Err(LoadError::new(self.cursor.path, location, format!("fov: the field of view must be between 0 and 180 degrees, found {h} (horizontal) and {fov} (vertical)")));
         }
         if (h_glint - h).abs() > 1.0e-3 {
             if let Some(t) = fov_token {
@@ -521,11 +426,11 @@ impl<'a> Parser<'a> {
         let camera_token = [self.eyep.map(|e| e.1), self.lookp.map(|l| l.1), self.up.map(|u| u.1)].into_iter().flatten().max_by_key(|t| t.offset);
         if crate::view_overflows(&camera) {
             let location = place(&self, camera_token);
-            return Err(LoadError::new(self.path, location, "`eyep` and `lookp` are too far apart (the view direction overflows 32-bit floats)"));
+            return Err(LoadError::new(self.cursor.path, location, "`eyep` and `lookp` are too far apart (the view direction overflows 32-bit floats)"));
         }
         if camera.basis().is_none() {
             let location = place(&self, camera_token);
-            return Err(LoadError::new(self.path, location, "`up` is parallel to the view direction (or `eyep` equals `lookp`)"));
+            return Err(LoadError::new(self.cursor.path, location, "`up` is parallel to the view direction (or `eyep` equals `lookp`)"));
         }
         if self.lights.is_empty() {
             self.lights.push(Light {
