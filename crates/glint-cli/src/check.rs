@@ -14,7 +14,7 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct CheckArgs {
-    /// Scene files (.toml, .nff or .obj), or spd:NAME[:SIZE] for generated SPD scenes
+    /// Scene files (.toml, .nff, .ray or .obj), or spd:NAME[:SIZE] for generated SPD scenes
     #[arg(required = true, value_parser = crate::scene_arg::parse)]
     scenes: Vec<PathBuf>,
     /// How an NFF file's `angle` is read (as for `glint render`)

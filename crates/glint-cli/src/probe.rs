@@ -19,7 +19,7 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct ProbeArgs {
-    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]
+    /// Scene file (.toml, .nff, .ray or .obj), or spd:NAME[:SIZE]
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: PathBuf,
     /// Column of the pixel, from the left (0 is the first)

@@ -20,7 +20,7 @@ use crate::{exit, Failure};
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE] for a generated SPD scene
+    /// Scene file (.toml, .nff, .ray or .obj), or spd:NAME[:SIZE] for a generated SPD scene
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: PathBuf,
     /// Output image: .png or .ppm (sRGB display values), .exr or .pfm (linear float)

@@ -21,7 +21,7 @@ const DEFAULT_RECORD: &str = "glint:showcase.toml";
 
 #[derive(Args)]
 pub struct ViewArgs {
-    /// Scene file (.toml, .nff or .obj), or spd:NAME[:SIZE]; default: the showcase, built in
+    /// Scene file (.toml, .nff, .ray or .obj), or spd:NAME[:SIZE]; default: the showcase, built in
     #[arg(value_parser = crate::scene_arg::parse)]
     scene: Option<PathBuf>,
     /// Close once the first complete image is on screen and print how long it

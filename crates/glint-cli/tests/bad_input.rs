@@ -205,7 +205,7 @@ fn every_bad_input_is_refused_with_one_line_naming_the_place() {
     // Written past the test harness's capture, so every run shows the summary.
     let _ = writeln!(std::io::stderr(), "bad input: {} files refused: {by_format:?}", files.len());
     assert!(files.len() >= 50, "the corpus has only {} files", files.len());
-    for format in ["toml", "nff", "obj"] {
+    for format in ["toml", "nff", "obj", "ray"] {
         assert!(by_format.get(format).copied().unwrap_or(0) >= 10, "fewer than 10 {format} cases: {by_format:?}");
     }
 }

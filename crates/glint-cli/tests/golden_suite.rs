@@ -295,7 +295,7 @@ fn suite_errors_are_one_line_with_their_exit_code() {
     let missing = dir.path().join("missing.toml");
     let cases: [(Vec<&str>, i32, String); 4] = [
         (vec![arg(&manifest)], 3, format!("glint: {}:3:", manifest.display())),
-        (vec![arg(empty.path())], 3, "no scene files (.toml, .nff or .obj) in the directory".into()),
+        (vec![arg(empty.path())], 3, "no scene files (.toml, .nff, .ray or .obj) in the directory".into()),
         (vec![arg(&missing)], 3, "missing.toml: cannot read manifest".into()),
         (vec![arg(dir.path()), "--case", "nope"], 2, "no case named `nope`".into()),
     ];

@@ -26,6 +26,32 @@ fn spd_writes_a_database_as_nff() {
     assert_eq!(balls.lines().filter(|l| l.starts_with("s ")).count(), 7381, "balls at its benchmark size, 4");
 }
 
+/// `glint spd NAME -o F.ray` writes SPD's `-r 8` text, which `glint check`
+/// and `glint render` read by its extension.
+#[test]
+fn spd_writes_rayshade_that_check_and_render_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("tetra_s3.ray");
+    let o = glint(&["spd", "tetra", "--size", "3", "-o", scene.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(text.starts_with("background 0.078 0.361 0.753\neyep "), "{text}");
+    assert_eq!(text.lines().filter(|l| l.starts_with("polygon txt001 ")).count(), 64, "tetra size 3: 4³ polygons");
+    let o = glint(&["spd", "tetra", "--size", "3", "--format", "rayshade"]);
+    assert_eq!(String::from_utf8(o.stdout).unwrap(), text, "--format rayshade on standard output");
+
+    let o = glint(&["check", scene.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = dir.path().join("t.png");
+    let o = glint(&["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--width", "64", "--height", "64", "--quiet"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::open(&png).unwrap().to_rgb8().dimensions(), (64, 64));
+
+    let o = glint(&["spd", "jacks", "--format", "rayshade"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("Glint writes SPD jacks as NFF only"), "{}", stderr(&o));
+}
+
 #[test]
 fn spd_scenes_render_without_any_file() {
     let dir = tempfile::tempdir().unwrap();

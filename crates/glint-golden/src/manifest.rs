@@ -49,7 +49,7 @@ pub struct Suite {
     pub graded: Vec<GradedCase>,
 }
 
-const SCENE_EXTENSIONS: [&str; 3] = ["toml", "nff", "obj"];
+const SCENE_EXTENSIONS: [&str; 4] = ["toml", "nff", "ray", "obj"];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -115,7 +115,7 @@ impl Suite {
     pub fn from_directory(dir: &Path) -> Result<Suite, LoadError> {
         let scenes = scene_files(dir, false, &[]).map_err(|e| LoadError::new(dir, None, format!("cannot read directory: {e}")))?;
         if scenes.is_empty() {
-            return Err(LoadError::new(dir, None, "no scene files (.toml, .nff or .obj) in the directory"));
+            return Err(LoadError::new(dir, None, "no scene files (.toml, .nff, .ray or .obj) in the directory"));
         }
         let criteria = CompareSettings::default().criteria();
         let cases = scenes
@@ -282,7 +282,7 @@ fn scene_cases(def: &ScenesDef, base: &Path, render: &RenderSettings, compare: &
     let dir = base.join(&def.dir);
     let scenes = scene_files(&dir, def.recursive, &def.exclude).map_err(|e| format!("dir: cannot read {}: {e}", dir.display()))?;
     if scenes.is_empty() {
-        return Err(format!("dir: no scene files (.toml, .nff or .obj) in {}", dir.display()));
+        return Err(format!("dir: no scene files (.toml, .nff, .ray or .obj) in {}", dir.display()));
     }
     let render = render.overridden_by(&def.render);
     let criteria = compare.overridden_by(&def.compare).criteria();
@@ -471,7 +471,7 @@ render = { spp = 1, width = 64, height = 48 }
         assert!(e.contains("missing.toml: cannot read manifest"), "{e}");
         let empty = tempfile::tempdir().unwrap();
         let e = Suite::load(empty.path()).unwrap_err().to_string();
-        assert!(e.ends_with("no scene files (.toml, .nff or .obj) in the directory"), "{e}");
+        assert!(e.ends_with("no scene files (.toml, .nff, .ray or .obj) in the directory"), "{e}");
     }
 
     #[test]

@@ -14,11 +14,13 @@ pub mod nff;
 pub mod opened_files;
 pub mod obj;
 pub mod polygon_split;
+pub mod rayshade;
 mod scene;
 mod shape;
 pub mod spd;
 pub mod suggest;
 pub mod test_rng;
+mod token_reader;
 mod toml_errors;
 pub mod toml_scene;
 pub mod toml_write;
@@ -101,7 +103,7 @@ pub struct LoadOptions {
 }
 
 /// Loads a scene with default options, choosing the reader by the file's
-/// extension: `.toml` (Glint's own format), `.nff` or `.obj`.
+/// extension: `.toml` (Glint's own format), `.nff`, `.ray` (Rayshade) or `.obj`.
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
     load_with(path, &LoadOptions::default())
 }
@@ -116,11 +118,12 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Scene, LoadError>
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("toml") => toml_scene::load(path),
         Some("nff") => nff::load(path, &nff_options),
+        Some("ray") => rayshade::load(path),
         Some("obj") => obj::load(path),
         _ => Err(LoadError::new(
             path,
             None,
-            "unknown scene format: expected a .toml, .nff or .obj file, or spd:NAME",
+            "unknown scene format: expected a .toml, .nff, .ray or .obj file, or spd:NAME",
         )),
     }
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use crate::LoadError;
 
-pub use glint_spd::{database, Database, CLASSIC, DATABASES, SpdError};
+pub use glint_spd::{database, Database, Format, CLASSIC, DATABASES, SpdError};
 
 /// What a scene name starts with to mean a generated database.
 pub const PREFIX: &str = "spd:";

@@ -2,21 +2,21 @@
 //! spheres of a third its radius sprouting from it, each of them sprouting nine
 //! more, down to the size factor; a square floor and three lights.
 
-use crate::Nff;
-use crate::vecmath::{self, Axis, Matrix};
-use crate::nff_out::{Vec3, Vec4};
+use crate::Output;
+use crate::vecmath::{self, Axis, Matrix, Vec3, Vec4};
 use std::f64::consts::PI;
 
 /// Size 6 prints 597 871 spheres (25 MB of text); size 7 would print 5.4 million (about 230 MB).
 pub const MAX_SIZE: u32 = 6;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     let radius = 1.0;
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([2.1, 1.3, 1.7], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 45.0, 0.01, 512, 512);
-    out.light([4.0, 3.0, 2.0, 1.0]);
-    out.light([1.0, -4.0, 4.0, 1.0]);
-    out.light([-3.0, 1.0, 5.0, 1.0]);
+    let lscale = out.light_scale(3);
+    out.light([4.0, 3.0, 2.0, lscale]);
+    out.light([1.0, -4.0, 4.0, lscale]);
+    out.light([-3.0, 1.0, 5.0, lscale]);
 
     out.color([1.0, 0.75, 0.33], 0.2, 0.8, 0.0, 0.0, 0.0, 0.0, 1.0);
     let [x, y, z] = [12.0 * radius, 12.0 * radius, -radius / 2.0];
@@ -36,7 +36,7 @@ struct Flake {
 impl Flake {
     /// The sphere `center` (radius in w), and `depth` generations of children
     /// growing along `direction` (whose w is the child/parent radius ratio).
-    fn output(&self, out: &mut Nff, depth: u32, center: Vec4, direction: Vec4) {
+    fn output(&self, out: &mut dyn Output, depth: u32, center: Vec4, direction: Vec4) {
         out.sphere(center);
         if depth == 0 {
             return;

@@ -4,8 +4,8 @@
 
 use std::f64::consts::PI;
 
-use crate::Nff;
-use crate::nff_out::Vec3;
+use crate::Output;
+use crate::vecmath::Vec3;
 
 /// Output grows as SIZE³ (about 21 kB a gear): size 20 is 8000 gears, 173 MB.
 pub const MAX_SIZE: u32 = 20;
@@ -20,12 +20,12 @@ const EDGE_DIFF: f64 = 1.0 - INNER_EDGE_RATIO;
 /// Thickness of a gear over its width.
 const DEPTH_RATIO: f64 = 0.1;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     let sf = f64::from(size);
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([-1.1, -2.1, 2.6], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 45.0, 1.0, 512, 512);
     for light in [[2.0, 4.0, 4.0], [-2.0, 4.0, 3.0], [2.0, -2.5, 2.5], [-1.0, -4.0, 2.0], [-1.111, -2.121, 2.626]] {
-        out.light([light[0], light[1], light[2], 1.0]);
+        out.light([light[0], light[1], light[2], out.light_scale(5)]);
     }
 
     out.color([1.0, 0.85, 0.7], 0.0, 0.3, 0.6, 0.3, 37.0, 0.0, 0.0);
@@ -90,7 +90,7 @@ struct Gear {
 
 impl Gear {
     /// Top face, the sides of the teeth, then the bottom face (wound the other way).
-    fn output(&self, out: &mut Nff) {
+    fn output(&self, out: &mut dyn Output) {
         let top = self.face(0.0, 1.0);
         out.polygon(&top);
         let below = |p: Vec3| [p[0], p[1], p[2] - self.thickness];

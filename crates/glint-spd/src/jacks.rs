@@ -2,15 +2,14 @@
 //! crossed cylinders with spheres on their ends) with a half-size copy in each
 //! of its eight octants, recursively, down to the size factor. One light.
 
-use crate::Nff;
-use crate::nff_out::Vec4;
-use crate::vecmath::{self, Axis, Matrix};
+use crate::Output;
+use crate::vecmath::{self, Axis, Matrix, Vec4};
 use std::f64::consts::PI;
 
 /// Size 7 prints 299 593 jacks (147 MB of text); size 8 would print eight times as much.
 pub const MAX_SIZE: u32 = 7;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     out.background([0.2, 0.05, 0.2]);
     out.viewpoint([0.0, 0.0, -8.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], 25.0, 0.001, 256, 256);
     out.light([-10.0, 3.0, -20.0, 1.0]);
@@ -24,7 +23,7 @@ pub fn generate(size: u32, out: &mut Nff) {
 
 /// The jack placed by `transform`, and `generations - 1` generations of
 /// half-size jacks in its octants.
-fn jack_and_children(out: &mut Nff, generations: u32, transform: &Matrix) {
+fn jack_and_children(out: &mut dyn Output, generations: u32, transform: &Matrix) {
     jack(out, &vecmath::multiply(&vecmath::scale([0.75; 3]), transform));
     if generations <= 1 {
         return;
@@ -40,7 +39,7 @@ fn jack_and_children(out: &mut Nff, generations: u32, transform: &Matrix) {
 }
 
 /// A jack spanning -1..1 on each axis before `transform`.
-fn jack(out: &mut Nff, transform: &Matrix) {
+fn jack(out: &mut dyn Output, transform: &Matrix) {
     let arm = |axis: usize, end: f64, radius: f64| {
         let mut point = [0.0, 0.0, 0.0, radius];
         point[axis] = end;

@@ -3,8 +3,8 @@
 //! their neighbours by matte red, green and blue cylinders along x, y and z.
 //! Six lights, and a material statement before every object.
 
-use crate::Nff;
-use crate::nff_out::Vec3;
+use crate::Output;
+use crate::vecmath::Vec3;
 
 /// Size 80 prints 531 441 spheres and 1.6 million cylinders (188 MB of text); size 81
 /// would print 222 MB, as its coordinates take more digits.
@@ -18,7 +18,7 @@ const CYLINDER_RADIUS: f64 = 1.0 / 16.0;
 const LIGHTS: [Vec3; 6] =
     [[2.0, 0.5, 0.5], [-1.0, 0.5, 0.5], [0.5, 2.0, 0.5], [0.5, -1.0, 0.5], [0.5, 0.5, 2.0], [0.5, 0.5, -1.0]];
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     let n = f64::from(size);
     let spacing = 1.0 / n;
     let sphere_radius = SPHERE_RADIUS / n;

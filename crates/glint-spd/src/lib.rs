@@ -1,12 +1,15 @@
 //! Eric Haines' Standard Procedural Databases (SPD 3.14), generated in Rust.
 //!
-//! Each database is a function of its size that writes the scene as NFF text,
-//! number for number what the original C generator prints in its default mode
-//! (`-r 1 -c`: NFF with true curved primitives). Glint reads that text with its
-//! NFF loader, so `spd:NAME` scenes need no file on disk.
+//! Each database is a function of its size that writes the scene through
+//! [`Output`], as NFF text, number for number what the original C generator
+//! prints in its default mode (`-r 1 -c`: NFF with true curved primitives), or
+//! for the seven classic databases as Rayshade text (`-r 8`). Glint reads the
+//! NFF with its NFF loader, so `spd:NAME` scenes need no file on disk.
 
 mod fmt_g;
 mod nff_out;
+mod output;
+mod rayshade_out;
 mod vecmath;
 
 mod balls;
@@ -24,6 +27,18 @@ mod tree;
 
 pub use fmt_g::fmt_g;
 pub use nff_out::Nff;
+pub use output::Output;
+pub use rayshade_out::Rayshade;
+
+/// One of SPD's output formats (its `-r` option).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Format {
+    /// `-r 1`, the Neutral File Format.
+    #[default]
+    Nff,
+    /// `-r 8`, Rayshade's `.ray` files.
+    Rayshade,
+}
 
 /// One of the twelve databases.
 pub struct Database {
@@ -32,7 +47,7 @@ pub struct Database {
     pub default_size: u32,
     /// The largest size Glint generates (larger ones would not fit in memory or on a device).
     pub max_size: u32,
-    generate: fn(u32, &mut Nff),
+    generate: fn(u32, &mut dyn Output),
 }
 
 /// All twelve, in the order SPD's Readme lists them.
@@ -59,6 +74,10 @@ pub const CLASSIC: &[&str] = &["balls", "gears", "mount", "rings", "teapot", "te
 pub enum SpdError {
     UnknownName(String),
     BadSize { name: &'static str, size: String, max: u32 },
+    /// Glint writes Rayshade text for the seven classic databases only: the
+    /// others need transforms or height fields that SPD writes to Rayshade
+    /// differently from NFF.
+    NoRayshade(&'static str),
 }
 
 impl std::fmt::Display for SpdError {
@@ -71,6 +90,11 @@ impl std::fmt::Display for SpdError {
             SpdError::BadSize { name, size, max } => {
                 write!(f, "SPD {name} has no size `{size}`: a whole number from 1 to {max}")
             }
+            SpdError::NoRayshade(name) => write!(
+                f,
+                "Glint writes SPD {name} as NFF only; the Rayshade format is for the seven classic databases ({})",
+                CLASSIC.join(", ")
+            ),
         }
     }
 }
@@ -85,13 +109,28 @@ pub fn database(name: &str) -> Result<&'static Database, SpdError> {
 impl Database {
     /// The scene at `size` (the default size when `None`) as NFF text.
     pub fn generate(&self, size: Option<u32>) -> Result<String, SpdError> {
+        self.generate_as(size, Format::Nff)
+    }
+
+    /// The scene at `size` (the default size when `None`) in `format`.
+    pub fn generate_as(&self, size: Option<u32>, format: Format) -> Result<String, SpdError> {
         let size = size.unwrap_or(self.default_size);
         if size == 0 || size > self.max_size {
             return Err(SpdError::BadSize { name: self.name, size: size.to_string(), max: self.max_size });
         }
-        let mut out = Nff::new();
-        (self.generate)(size, &mut out);
-        Ok(out.finish())
+        Ok(match format {
+            Format::Nff => {
+                let mut out = Nff::new();
+                (self.generate)(size, &mut out);
+                out.finish()
+            }
+            Format::Rayshade if !CLASSIC.contains(&self.name) => return Err(SpdError::NoRayshade(self.name)),
+            Format::Rayshade => {
+                let mut out = Rayshade::new();
+                (self.generate)(size, &mut out);
+                out.finish()
+            }
+        })
     }
 }
 

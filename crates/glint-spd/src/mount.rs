@@ -4,8 +4,8 @@
 
 use std::f64::consts::PI;
 
-use crate::Nff;
-use crate::nff_out::{Vec3, Vec4};
+use crate::Output;
+use crate::vecmath::{Vec3, Vec4};
 
 /// SPD's seed hash shifts by `7 - SIZE` bits, a negative (undefined) shift in C
 /// past size 7, so no original output exists beyond it (size 7: 2.7 MB).
@@ -22,10 +22,10 @@ const WIDTH: f64 = 2.0;
 #[expect(clippy::approx_constant, reason = "SPD's own rounding of the constant")]
 const SQRT_2: f64 = 1.4142136;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([-1.6, 1.6, 1.7], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 45.0, 0.01, 512, 512);
-    out.light([-100.0, -100.0, 100.0, 1.0]);
+    out.light([-100.0, -100.0, 100.0, out.light_scale(1)]);
 
     out.color([1.0, 1.0, 1.0], 0.0, 0.1, 0.1, 0.4, 6.7, 0.9, 1.5);
     create_spheres([-0.8, 0.8, 1.0, 0.17], out);
@@ -39,7 +39,7 @@ pub fn generate(size: u32, out: &mut Nff) {
 
 /// Four spheres of radius `center[3]` touching one another: one on top, three
 /// around `center` below it.
-fn create_spheres(center: Vec4, out: &mut Nff) {
+fn create_spheres(center: Vec4, out: &mut dyn Output) {
     // (1, 1, 0) normalized, as lib_normalize_vector divides it.
     let axis = [1.0 / 2.0f64.sqrt(), 1.0 / 2.0f64.sqrt(), 0.0];
     let pt = [0.0, 0.0, center[3] * (3.0f64 / 2.0).sqrt()];
@@ -89,7 +89,7 @@ impl Mountain {
     /// `z` (lower left, lower right, upper right, upper left): two triangles for
     /// one cell, else four quarter squares whose new corners are the edge and
     /// centre midpoints, raised by a random amount that shrinks with the width.
-    fn grow(&self, width: u32, ll_x: u32, ll_y: u32, z: [f64; 4], out: &mut Nff) {
+    fn grow(&self, width: u32, ll_x: u32, ll_y: u32, z: [f64; 4], out: &mut dyn Output) {
         let [ll_fz, lr_fz, ur_fz, ul_fz] = z;
         if width == 1 {
             let l_fx = CORNER + f64::from(ll_x) * WIDTH / self.fnum_pts;

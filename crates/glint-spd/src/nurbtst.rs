@@ -4,9 +4,8 @@
 //!
 //! The basis functions are computed in `f32`, as SPD's libpr3 does.
 
-use crate::Nff;
-use crate::nff_out::Vec3;
-use crate::vecmath::{self, Axis, Matrix};
+use crate::Output;
+use crate::vecmath::{self, Axis, Matrix, Vec3};
 use std::f64::consts::PI;
 
 /// `nurbtst` reads `-s` into a C `int` and then ignores it: every size is the
@@ -34,7 +33,7 @@ const CONTROL: [[Vec3; 5]; 6] = [
     [[0.0, 5.0, 0.0], [1.0, 5.0, -3.0], [2.0, 5.0, 3.0], [3.0, 5.0, -3.0], [4.0, 5.0, 0.0]],
 ];
 
-pub fn generate(_size: u32, out: &mut Nff) {
+pub fn generate(_size: u32, out: &mut dyn Output) {
     out.background([0.0; 3]);
     out.viewpoint([0.0, 5.0, -10.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], 30.0, 0.001, 256, 256);
     out.light([0.0, 50.0, -10.0, 1.0]);

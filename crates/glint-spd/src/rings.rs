@@ -3,9 +3,8 @@
 //! at the joints, stacked in a pyramid the viewer looks at from its tip. A wall
 //! behind catches the shadows of three lights.
 
-use crate::Nff;
-use crate::nff_out::Vec3;
-use crate::vecmath::{self, Axis};
+use crate::Output;
+use crate::vecmath::{self, Axis, Vec3};
 use std::f64::consts::PI;
 
 /// Size 58 prints 2 million spheres and as many cylinders (200 MB of text).
@@ -14,16 +13,17 @@ pub const MAX_SIZE: u32 = 58;
 /// Radius of the cylinders and of the spheres at their joints.
 const TUBE_RADIUS: f64 = 0.07412;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     // The pyramid's layers lie this far apart (rings.c's SPREAD_OUT of 1), its objects 2 apart within a layer.
     let spread = 1.0 / (PI / 8.0).sin();
 
     out.background([0.078, 0.361, 0.753]);
     let from = [-1.0, -spread, 0.5];
     out.viewpoint(from, [from[0], from[1] + 1.0, from[2]], [0.0, 0.0, 1.0], 45.0, 1.0, 512, 512);
-    out.light([3.0, -spread, 3.0, 1.0]);
-    out.light([-4.0, -spread, 1.0, 1.0]);
-    out.light([2.0, -spread, -4.0, 1.0]);
+    let lscale = out.light_scale(3);
+    out.light([3.0, -spread, 3.0, lscale]);
+    out.light([-4.0, -spread, 1.0, lscale]);
+    out.light([2.0, -spread, -4.0, lscale]);
 
     out.color([1.0, 1.0, 1.0], 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     // Just spans the 45° view, plus 1%.

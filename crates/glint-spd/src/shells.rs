@@ -3,7 +3,7 @@
 //! spheres under one light. Meant as a pathological case: lots of overlap,
 //! many tiny spheres.
 
-use crate::Nff;
+use crate::Output;
 use std::f64::consts::PI;
 
 /// Size 14 prints 2.9 million spheres (120 MB of text); size 15 would print twice as much.
@@ -16,7 +16,7 @@ const BETA: f64 = -2.0;
 const EXPONENT: f64 = 0.15;
 const RELATIVE_SIZE: f64 = 1.0;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([-6.0, -60.0, 35.0], [0.0, 8.0, -15.0], [0.0, 0.0, 1.0], 45.0, 0.5, 512, 512);
     out.light([-100.0, -100.0, 100.0, 1.0]);

@@ -2,13 +2,13 @@
 //! field of a damped cosine ripple, `cos(2πr)·e^-r`, sampled on a
 //! 32·2^(SIZE-1) square grid and output as triangles. One light.
 
-use crate::Nff;
+use crate::Output;
 
 /// Output grows as 4^SIZE: size 6 (a 1024² grid, 2.1 million triangles) is
 /// about 173 MB.
 pub const MAX_SIZE: u32 = 6;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([0.0, 5.0, -8.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 40.0, 0.01, 512, 512);
     out.light([10.0, 10.0, -10.0, 1.0]);
@@ -45,7 +45,7 @@ fn create_sombrero(width: usize, lo: f64, hi: f64) -> Vec<Vec<f32>> {
 
 /// `lib_output_polygon_height`: each grid cell as two triangles, the height
 /// along y (offset by `y0`), rows along z and columns along x.
-fn output_height(data: &[Vec<f32>], x: [f64; 2], y0: f64, z: [f64; 2], out: &mut Nff) {
+fn output_height(data: &[Vec<f32>], x: [f64; 2], y0: f64, z: [f64; 2], out: &mut dyn Output) {
     let (height, width) = (data.len(), data[0].len());
     let xdelta = (x[1] - x[0]) / (width - 1) as f64;
     let zdelta = (z[1] - z[0]) / (height - 1) as f64;

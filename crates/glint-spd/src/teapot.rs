@@ -2,27 +2,27 @@
 //! as 32 bicubic Bézier patches, each cut into SIZE × SIZE quadrilaterals of
 //! two smooth triangles, on a SIZE × SIZE checkerboard. Two lights.
 
-use crate::Nff;
-use crate::nff_out::Vec3;
-use crate::vecmath::{self, Matrix};
+use crate::Output;
+use crate::vecmath::{self, Matrix, Vec3};
 
 /// Output grows as 64·SIZE² triangles of about 170 bytes: size 135 is 199.6 MB,
 /// 136 would pass 200 MB. (The C program has no limit.)
 pub const MAX_SIZE: u32 = 135;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     // teapot.c warns on stderr that size 1 is "not supported"; the warning is
     // not part of the scene, so it is not printed here.
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([4.86, 7.2, 5.4], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 45.0, 1.0, 512, 512);
-    out.light([-3.1, 9.8, 12.1, 1.0]);
-    out.light([11.3, 5.1, 8.8, 1.0]);
+    let lscale = out.light_scale(2);
+    out.light([-3.1, 9.8, 12.1, lscale]);
+    out.light([11.3, 5.1, 8.8, lscale]);
     checkerboard(size, out);
     teapot(size, out);
 }
 
 /// The white squares, then the grey ones, each from the list of all squares.
-fn checkerboard(size: u32, out: &mut Nff) {
+fn checkerboard(size: u32, out: &mut dyn Output) {
     for (color, odd) in [([1.0; 3], true), ([0.5; 3], false)] {
         out.color(color, 0.0, 0.5, 0.5, 0.5, 30.0, 0.0, 0.0);
         for s in 0..size {
@@ -45,7 +45,7 @@ fn square(s: u32, t: u32, size: u32) -> [Vec3; 4] {
 /// The cubic Bézier basis. It is symmetric, so SPD's `M · G · Mᵀ` is `M · G · M`.
 const BEZIER: Matrix = [[-1.0, 3.0, -3.0, 1.0], [3.0, -6.0, 3.0, 0.0], [-3.0, 3.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]];
 
-fn teapot(size: u32, out: &mut Nff) {
+fn teapot(size: u32, out: &mut dyn Output) {
     out.color([1.0, 0.5, 0.1], 0.0, 0.75, 0.25, 0.25, 37.0, 0.0, 0.0);
     let steps = size as f64;
     for patch in &PATCHES {

@@ -2,13 +2,13 @@
 //! tetrahedron split into four half-size ones down to the size factor, with the
 //! view and light of Kay & Kajiya's test scene.
 
-use crate::Nff;
-use crate::nff_out::{Vec3, Vec4};
+use crate::Output;
+use crate::vecmath::{Vec3, Vec4};
 
 /// Size 10 prints a million triangles (92 MB of text); size 11 would print four times as much.
 pub const MAX_SIZE: u32 = 10;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint(
         [1.022846, -3.177154, -2.174512],
@@ -19,7 +19,7 @@ pub fn generate(size: u32, out: &mut Nff) {
         512,
         512,
     );
-    out.light([2.0, -18.0, -5.0, 1.0]);
+    out.light([2.0, -18.0, -5.0, out.light_scale(1)]);
     out.color([1.0, 0.2, 0.2], 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     tetrahedron(out, size, [0.0, 0.0, 0.0, 1.0]);
 }
@@ -48,7 +48,7 @@ fn corners(center: Vec4, half_width: f64) -> [Vec3; 4] {
 
 /// The tetrahedron inscribed in the cube `center` (half-width in w): at depth 1
 /// its four faces, otherwise the four half-size tetrahedra at its corners.
-fn tetrahedron(out: &mut Nff, depth: u32, center: Vec4) {
+fn tetrahedron(out: &mut dyn Output, depth: u32, center: Vec4) {
     if depth <= 1 {
         let [a, b, c, d] = corners(center, center[3]);
         // Counterclockwise seen from outside.

@@ -4,8 +4,8 @@
 
 use std::f64::consts::PI;
 
-use crate::Nff;
-use crate::nff_out::Vec4;
+use crate::Output;
+use crate::vecmath::Vec4;
 
 /// Output doubles with each size (2^(SIZE+1) - 1 branches, about 120 bytes
 /// each): size 19 is about 125 MB.
@@ -20,7 +20,7 @@ const DIV_ANGLE: [f64; 2] = [90.0, 140.0 + 90.0];
 const BR_DIAMETER: f64 = 0.67;
 const WIDTH_HEIGHT_RATIO: f64 = 0.15;
 
-pub fn generate(size: u32, out: &mut Nff) {
+pub fn generate(size: u32, out: &mut dyn Output) {
     out.background([0.078, 0.361, 0.753]);
     out.viewpoint([4.5, 0.4, 2.0], [0.0, 0.0, 1.5], [0.0, 0.0, 1.0], 45.0, 1.0, 512, 512);
     let lights = [
@@ -33,7 +33,7 @@ pub fn generate(size: u32, out: &mut Nff) {
         [-10.0, -60.0, 30.0],
     ];
     for light in lights {
-        out.light([light[0], light[1], light[2], 1.0]);
+        out.light([light[0], light[1], light[2], out.light_scale(7)]);
     }
 
     out.color([0.2, 0.7, 0.2], 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -57,7 +57,7 @@ pub fn generate(size: u32, out: &mut Nff) {
 }
 
 /// Outputs the unit branch along z placed by `mx`, then its two children.
-fn grow_tree(mx: &Matrix, scale: f64, depth: u32, branch: &[Matrix; 2], out: &mut Nff) {
+fn grow_tree(mx: &Matrix, scale: f64, depth: u32, branch: &[Matrix; 2], out: &mut dyn Output) {
     let base = transform_point([0.0, 0.0, 0.0], mx, scale * WIDTH_HEIGHT_RATIO);
     let apex = transform_point([0.0, 0.0, 1.0], mx, base[3] * BR_DIAMETER);
     out.cylcone(base, apex);

@@ -2,7 +2,10 @@
 //! the last row). Every sum is written in libvec's order, so results match the
 //! C generators bit for bit.
 
-use crate::nff_out::{Vec3, Vec4};
+/// A point or colour, as SPD's `COORD3`.
+pub type Vec3 = [f64; 3];
+/// A point with a radius (spheres, cone ends) or a light with an intensity, as SPD's `COORD4`.
+pub type Vec4 = [f64; 4];
 
 pub type Matrix = [[f64; 4]; 4];
 

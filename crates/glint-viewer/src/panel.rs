@@ -78,7 +78,7 @@ impl ViewerApp {
                     self.open(self.document.open_path.trim().into());
                 }
             });
-            ui.small("Or drop a .toml, .nff or .obj file on the window. The file is reloaded when it changes.");
+            ui.small("Or drop a .toml, .nff, .ray or .obj file on the window. The file is reloaded when it changes.");
         });
     }
 

@@ -23,7 +23,7 @@ impl ViewerApp {
             let text = if self.document.loading {
                 "loading…"
             } else {
-                "Drop a scene file (.toml, .nff, .obj) here, or start with `glint view SCENE`."
+                "Drop a scene file (.toml, .nff, .ray, .obj) here, or start with `glint view SCENE`."
             };
             ui.centered_and_justified(|ui| ui.heading(text));
             return;

@@ -225,6 +225,22 @@ fn a_dropped_file_opens_and_an_edited_file_reloads() {
     settle(&mut h);
 }
 
+/// A Rayshade file opens by its extension, as an NFF does.
+#[test]
+fn a_dropped_rayshade_file_opens() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("tetra_s2.ray");
+    let db = glint_scene::spd::database("tetra").unwrap();
+    std::fs::write(&path, db.generate_as(Some(2), glint_scene::spd::Format::Rayshade).unwrap()).unwrap();
+    let mut h = harness(None, ShaderSource::Embedded);
+    h.step();
+    h.input_mut().dropped_files.push(Arc::new(Dropped(path)));
+    h.step();
+    settle(&mut h);
+    assert_eq!(h.state().scene().unwrap().primitive_count(), 16, "tetra size 2: 4² triangles");
+    assert!(h.state().errors().is_empty(), "{:?}", h.state().errors());
+}
+
 #[test]
 fn a_shader_error_is_shown_and_the_last_good_pipeline_keeps_running() {
     let shaders = tempfile::tempdir().unwrap();

@@ -49,7 +49,7 @@ impl Inbox {
             document.create_element("input").map_err(|e| format!("cannot open a file picker: {e:?}"))?.unchecked_into();
         input.set_type("file");
         input.set_multiple(true);
-        input.set_accept(".toml,.nff,.obj,.mtl");
+        input.set_accept(".toml,.nff,.ray,.obj,.mtl");
         let (inbox, ctx, chosen) = (self.clone(), ctx.clone(), input.clone());
         let on_change = Closure::once_into_js(move || {
             let files: Vec<web_sys::File> = chosen.files().map_or_else(Vec::new, |list| (0..list.length()).filter_map(|i| list.get(i)).collect());

@@ -10,11 +10,11 @@ pub const MAX_FILE_BYTES: u64 = 256 << 20;
 pub fn scene_of<'a>(names: &[&'a str]) -> Result<&'a str, String> {
     let is_scene = |name: &&str| {
         let extension = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
-        matches!(extension.as_deref(), Some("toml" | "nff" | "obj"))
+        matches!(extension.as_deref(), Some("toml" | "nff" | "ray" | "obj"))
     };
     names.iter().copied().find(is_scene).ok_or_else(|| match names {
         [] => "no file was opened".to_string(),
-        [name, ..] => format!("{name}: unknown scene format: expected a .toml, .nff or .obj file (open an .obj together with its .mtl)"),
+        [name, ..] => format!("{name}: unknown scene format: expected a .toml, .nff, .ray or .obj file (open an .obj together with its .mtl)"),
     })
 }
 
@@ -34,6 +34,7 @@ mod tests {
     fn the_scene_is_the_first_scene_file_whatever_comes_with_it() {
         assert_eq!(scene_of(&["cube.mtl", "cube.OBJ"]), Ok("cube.OBJ"));
         assert_eq!(scene_of(&["a.nff", "b.toml"]), Ok("a.nff"));
+        assert_eq!(scene_of(&["notes.txt", "tetra_s3.ray"]), Ok("tetra_s3.ray"));
         let only_mtl = scene_of(&["cube.mtl"]).unwrap_err();
         assert!(only_mtl.starts_with("cube.mtl: unknown scene format"), "{only_mtl}");
         assert_eq!(scene_of(&[]), Err("no file was opened".into()));

@@ -177,7 +177,7 @@ impl WebApp {
                     ui.close();
                 }
             });
-            let open = ui.button("Open file…").on_hover_text("a .toml, .nff or .obj scene (with its .mtl); or drop files on the page");
+            let open = ui.button("Open file…").on_hover_text("a .toml, .nff, .ray or .obj scene (with its .mtl); or drop files on the page");
             if open.clicked() {
                 if let Err(e) = self.inbox.pick(ui.ctx()) {
                     self.notice = Some((e, true));

@@ -10,17 +10,14 @@ use super::{fov_y_from_angle, light_intensity, material, NffContents, NffOptions
 use crate::quoted;
 use crate::scene::MAX_IMAGE_SIDE;
 use crate::shape::{polygon_normal, ShapeProblem};
-use crate::{Attenuation, Camera, Light, LightKind, LoadError, Location, Material, Object, Projection, Shape};
+use crate::token_reader::{Cursor, Token, TokenReader};
+use crate::{Attenuation, Camera, Light, LightKind, LoadError, Material, Object, Projection, Shape};
 
 /// Parses NFF text without requiring a `v` block.
 pub fn parse_contents(source: &str, path: &Path, options: &NffOptions) -> Result<NffContents, LoadError> {
     let mut parser = Parser {
-        source,
-        path,
+        cursor: Cursor::new(source, path, tokenize(source)),
         options,
-        tokens: tokenize(source),
-        pos: 0,
-        statement: None,
         contents: NffContents {
             view: None,
             background: None,
@@ -58,14 +55,6 @@ fn default_material() -> Material {
     material("nff default".into(), Vec3::ONE, 1.0, 0.0, 0.0, 0.0, 1.0)
 }
 
-#[derive(Debug, Clone, Copy)]
-struct Token<'a> {
-    text: &'a str,
-    /// Byte offset in the source.
-    offset: usize,
-    line: usize,
-}
-
 fn tokenize(source: &str) -> Vec<Token<'_>> {
     let mut tokens = Vec::with_capacity(source.len() / 6);
     let mut line_start = 0;
@@ -92,13 +81,8 @@ fn tokenize(source: &str) -> Vec<Token<'_>> {
 const KEYWORDS: &[&str] = &["v", "b", "l", "f", "c", "s", "p", "pp"];
 
 struct Parser<'a> {
-    source: &'a str,
-    path: &'a Path,
+    cursor: Cursor<'a>,
     options: &'a NffOptions,
-    tokens: Vec<Token<'a>>,
-    pos: usize,
-    /// The keyword being read, for messages about its operands.
-    statement: Option<Token<'a>>,
     contents: NffContents,
     current_material: Option<usize>,
     /// Material index by the bits of its `f` operands, so repeated `f` lines share one.
@@ -106,89 +90,35 @@ struct Parser<'a> {
     light_specs: Vec<(Vec3, Vec3)>,
 }
 
-impl<'a> Parser<'a> {
-    fn location(&self, token: &Token) -> Location {
-        let line_start = self.source[..token.offset].rfind('\n').map_or(0, |i| i + 1);
-        let column = self.source[line_start..token.offset].chars().count() + 1;
-        Location { line: token.line, column: Some(column) }
+impl<'a> TokenReader<'a> for Parser<'a> {
+    fn cursor(&self) -> &Cursor<'a> {
+        &self.cursor
     }
 
-    fn error(&self, token: &Token, message: impl Into<String>) -> LoadError {
-        LoadError::new(self.path, Some(self.location(token)), message)
+    fn cursor_mut(&mut self) -> &mut Cursor<'a> {
+        &mut self.cursor
     }
 
-    fn warn(&mut self, token: &Token, message: impl Into<String>) {
-        let warning = self.error(token, message);
-        self.contents.warnings.push(warning);
+    fn warnings(&mut self) -> &mut Vec<LoadError> {
+        &mut self.contents.warnings
     }
 
-    fn statement_name(&self) -> String {
-        match &self.statement {
-            Some(t) => format!("{} (line {})", quoted(t.text), t.line),
-            None => "the file".into(),
-        }
-    }
-
-    fn peek(&self) -> Option<Token<'a>> {
-        self.tokens.get(self.pos).copied()
-    }
-
-    /// The next token, which must exist: `what` says what was expected.
-    fn expect(&mut self, what: &str) -> Result<Token<'a>, LoadError> {
-        match self.peek() {
-            Some(t) => {
-                self.pos += 1;
-                Ok(t)
-            }
+    /// Primitives before the first `f` get the default material.
+    fn push(&mut self, shapes: Vec<Shape>) {
+        let material = match self.current_material {
+            Some(m) => m,
             None => {
-                let at = self.statement.or_else(|| self.tokens.last().copied());
-                let message = format!("unexpected end of file: {} needs {what}", self.statement_name());
-                Err(match at {
-                    Some(t) => self.error(&t, message),
-                    None => LoadError::new(self.path, None, message),
-                })
+                let m = self.contents.materials.len();
+                self.contents.materials.push(default_material());
+                self.current_material = Some(m);
+                m
             }
-        }
+        };
+        self.contents.objects.push(Object { material, shapes });
     }
+}
 
-    fn number(&mut self, what: &str) -> Result<f32, LoadError> {
-        let t = self.expect(what)?;
-        match t.text.parse::<f32>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(self.error(&t, format!("{what}: {} is not a finite number", quoted(t.text)))),
-            Err(_) => Err(self.error(
-                &t,
-                format!("expected a number ({what}) for {}, found {}", self.statement_name(), quoted(t.text)),
-            )),
-        }
-    }
-
-    fn non_negative(&mut self, what: &str) -> Result<f32, LoadError> {
-        let offset = self.pos;
-        let v = self.number(what)?;
-        if v < 0.0 {
-            let t = self.tokens[offset];
-            return Err(self.error(&t, format!("{what} must not be negative, found {v}")));
-        }
-        Ok(v)
-    }
-
-    fn vec3(&mut self, what: &str) -> Result<Vec3, LoadError> {
-        Ok(Vec3::new(
-            self.number(&format!("{what} x"))?,
-            self.number(&format!("{what} y"))?,
-            self.number(&format!("{what} z"))?,
-        ))
-    }
-
-    fn color(&mut self, what: &str) -> Result<Vec3, LoadError> {
-        Ok(Vec3::new(
-            self.non_negative(&format!("{what} red"))?,
-            self.non_negative(&format!("{what} green"))?,
-            self.non_negative(&format!("{what} blue"))?,
-        ))
-    }
-
+impl<'a> Parser<'a> {
     /// A count of vertices: a whole number, at least `min`.
     fn count(&mut self, what: &str, min: usize) -> Result<usize, LoadError> {
         let t = self.expect(what)?;
@@ -203,7 +133,7 @@ impl<'a> Parser<'a> {
 
     fn run(&mut self) -> Result<(), LoadError> {
         while let Some(t) = self.peek() {
-            self.pos += 1;
+            self.cursor.pos += 1;
             if !KEYWORDS.contains(&t.text) {
                 let message = if t.text.parse::<f64>().is_ok() {
                     format!("unexpected number {}: too many values for {}", quoted(t.text), self.statement_name())
@@ -212,7 +142,7 @@ impl<'a> Parser<'a> {
                 };
                 return Err(self.error(&t, message));
             }
-            self.statement = Some(t);
+            self.cursor.statement = Some(t);
             match t.text {
                 "v" => self.view(t)?,
                 "b" => {
@@ -249,8 +179,8 @@ impl<'a> Parser<'a> {
             if seen {
                 return Err(self.error(&t, format!("`{}` given twice in the `v` block", t.text)));
             }
-            self.pos += 1;
-            self.statement = Some(t);
+            self.cursor.pos += 1;
+            self.cursor.statement = Some(t);
             match t.text {
                 "from" => from = Some(self.vec3("from")?),
                 "at" => at = Some(self.vec3("at")?),
@@ -258,11 +188,11 @@ impl<'a> Parser<'a> {
                 "angle" => {
                     let a = self.number("angle")?;
                     if !(a > 0.0 && a < 180.0) {
-                        let tok = self.tokens[self.pos - 1];
+                        let tok = self.cursor.tokens[self.cursor.pos - 1];
                         return Err(self.error(&tok, format!("angle: {a} is not between 0 and 180 degrees")));
                     }
                     if let Some(warning) = crate::toml_scene::radians_warning("angle", a) {
-                        let tok = self.tokens[self.pos - 1];
+                        let tok = self.cursor.tokens[self.cursor.pos - 1];
                         self.warn(&tok, warning);
                     }
                     angle = Some((a, t));
@@ -281,7 +211,7 @@ impl<'a> Parser<'a> {
                 }
             }
         }
-        self.statement = Some(v);
+        self.cursor.statement = Some(v);
         let missing = |name: &str| self.error(&v, format!("the `v` block has no `{name}`"));
         let from = from.ok_or_else(|| missing("from"))?;
         let at = at.ok_or_else(|| missing("at"))?;
@@ -317,10 +247,10 @@ impl<'a> Parser<'a> {
         let ks = self.non_negative("Ks")?;
         let shine = self.non_negative("Shine")?;
         let t = self.non_negative("T")?;
-        let ior_at = self.pos;
+        let ior_at = self.cursor.pos;
         let ior = self.number("index of refraction")?;
         if t > 0.0 && ior <= 0.0 {
-            let tok = self.tokens[ior_at];
+            let tok = self.cursor.tokens[ior_at];
             return Err(self.error(&tok, format!("index of refraction must be positive for a transmissive material, found {ior}")));
         }
         let key = [color.x, color.y, color.z, kd, ks, shine, t, ior].map(f32::to_bits);
@@ -335,41 +265,6 @@ impl<'a> Parser<'a> {
         };
         self.current_material = Some(index);
         Ok(())
-    }
-
-    /// Adds the primitive `keyword` stands for, made of `shapes`.
-    fn push(&mut self, shapes: Vec<Shape>) {
-        let material = match self.current_material {
-            Some(m) => m,
-            None => {
-                let m = self.contents.materials.len();
-                self.contents.materials.push(default_material());
-                self.current_material = Some(m);
-                m
-            }
-        };
-        self.contents.objects.push(Object { material, shapes });
-    }
-
-    /// Adds the shape `keyword` describes, or applies the shared policy to what
-    /// stops it being one: a degenerate shape is skipped with a warning, one
-    /// beyond the range of f32 is an error.
-    fn push_built(&mut self, keyword: &Token, built: Result<Shape, ShapeProblem>) -> Result<(), LoadError> {
-        match built {
-            Ok(shape) => {
-                self.push(vec![shape]);
-                Ok(())
-            }
-            Err(ShapeProblem::Degenerate(warning)) => {
-                self.warn(keyword, warning);
-                Ok(())
-            }
-            Err(ShapeProblem::Overflows) => Err(self.overflow(keyword)),
-        }
-    }
-
-    fn overflow(&self, keyword: &Token) -> LoadError {
-        self.error(keyword, format!("the `{}` reaches beyond the range of 32-bit floats", keyword.text))
     }
 
     fn sphere(&mut self, s: Token<'a>) -> Result<(), LoadError> {
@@ -388,22 +283,16 @@ impl<'a> Parser<'a> {
 
     fn polygon(&mut self, p: Token<'a>) -> Result<(), LoadError> {
         let n = self.count("vertex count", 3)?;
-        let mut vertices = Vec::with_capacity(n.min(self.tokens.len() / 3));
+        let mut vertices = Vec::with_capacity(n.min(self.cursor.tokens.len() / 3));
         for i in 0..n {
             vertices.push(self.vec3(&format!("vertex {}", i + 1))?);
         }
-        let built = Shape::polygon(vertices).map(|(shape, non_planar)| {
-            if let Some(warning) = non_planar {
-                self.warn(&p, warning);
-            }
-            shape
-        });
-        self.push_built(&p, built)
+        self.push_polygon(&p, vertices)
     }
 
     fn patch(&mut self, pp: Token<'a>) -> Result<(), LoadError> {
         let n = self.count("vertex count", 3)?;
-        let mut vertices = Vec::with_capacity(n.min(self.tokens.len() / 6));
+        let mut vertices = Vec::with_capacity(n.min(self.cursor.tokens.len() / 6));
         let mut normals = Vec::with_capacity(vertices.capacity());
         for i in 0..n {
             vertices.push(self.vec3(&format!("vertex {}", i + 1))?);

@@ -160,6 +160,74 @@ pub(crate) fn nff_text(mode: Mode) -> BoxedStrategy<String> {
 }
 
 // ---------------------------------------------------------------------------
+// Rayshade
+
+/// A surface name: Sane files define all three before using them.
+fn ray_surface_name() -> BoxedStrategy<String> {
+    prop::sample::select(vec!["s0", "s1", "s2"]).prop_map(String::from).boxed()
+}
+
+fn ray_surface(mode: Mode, name: BoxedStrategy<String>) -> BoxedStrategy<String> {
+    let component = prop_oneof![
+        (prop::sample::select(vec!["ambient", "diffuse", "specular", "body"]), positives(mode, 3)).prop_map(|(k, c)| format!("{k} {c}")),
+        (prop::sample::select(vec!["specpow", "reflect", "transp", "index", "extinct"]), positive(mode)).prop_map(|(k, v)| format!("{k} {v}")),
+        Just("noshadow".to_string()),
+    ];
+    (name, prop::collection::vec(component, 0..6))
+        .prop_map(|(name, components)| format!("surface {name}\n    {}", components.join("\n    ")))
+        .boxed()
+}
+
+pub(crate) fn ray_statement(mode: Mode) -> BoxedStrategy<String> {
+    let surf = ray_surface_name;
+    let planar = (number(mode), number(mode)).prop_map(|(x, y)| format!("{x} {y} 1"));
+    let smooth_vertex = (numbers(mode, 3), numbers(mode, 3)).prop_map(|(v, n)| format!("{v} {n}"));
+    let corners = if mode == Mode::Sane { 3..8 } else { 0..8 };
+    prop_oneof![
+        1 => numbers(mode, 3).prop_map(|v| format!("eyep {v}")),
+        1 => numbers(mode, 3).prop_map(|v| format!("lookp {v}")),
+        1 => (positive(mode), prop::option::of(positive(mode))).prop_map(|(h, v)| format!("fov {h} {}", v.unwrap_or_default())),
+        1 => positives(mode, 3).prop_map(|c| format!("background {c}")),
+        1 => (0u32..16).prop_map(|n| format!("maxdepth {n}")),
+        1 => (1u32..4).prop_map(|n| format!("sample {n} nojitter")),
+        2 => (positive(mode), numbers(mode, 3)).prop_map(|(i, p)| format!("light {i} point {p}")),
+        1 => (positives(mode, 3), numbers(mode, 3)).prop_map(|(i, d)| format!("light {i} directional {d}")),
+        1 => positive(mode).prop_map(|i| format!("light {i} ambient")),
+        // Sane files define new names; Wild ones also define a name again.
+        1 => ray_surface(mode, match mode {
+            Mode::Sane => (0u32..1_000_000).prop_map(|n| format!("x{n}")).boxed(),
+            Mode::Wild => ray_surface_name(),
+        }),
+        4 => (surf(), positive(mode), numbers(mode, 3)).prop_map(|(s, r, c)| format!("sphere {s} {r} {c}")),
+        2 => (surf(), positive(mode), numbers(mode, 3), positive(mode), numbers(mode, 3))
+            .prop_map(|(s, br, b, ar, a)| format!("cone {s} {br} {b}\n{ar} {a}")),
+        1 => (surf(), positive(mode), numbers(mode, 6)).prop_map(|(s, r, e)| format!("cylinder {s} {r} {e}")),
+        2 => (surf(), prop::collection::vec(planar, corners.clone())).prop_map(|(s, v)| format!("polygon {s}\n{}", v.join("\n"))),
+        1 => (surf(), numbers(mode, 9)).prop_map(|(s, v)| format!("triangle {s} {v}")),
+        2 => (surf(), prop::collection::vec(smooth_vertex, 3)).prop_map(|(s, v)| format!("triangle {s} {}", v.join("  "))),
+        1 => (surf(), numbers(mode, 6)).prop_map(|(s, v)| format!("plane {s} {v}")),
+        1 => "[ -~]{0,20}".prop_map(|c| format!("/* {} */", c.replace("*/", ""))),
+        1 => "[ -~]{0,20}".prop_map(|c| format!("// {c}")),
+    ]
+    .boxed()
+}
+
+pub(crate) fn ray_text(mode: Mode) -> BoxedStrategy<String> {
+    let header = (
+        // Near square, so that the default fov of 45 stays below 180 vertically.
+        (16u32..40, 16u32..40).prop_map(|(w, h)| format!("screen {w} {h}\neyep 0 -5 1\nlookp 0 0 0\nup 0 0 1")),
+        prop::collection::vec(ray_surface(mode, Just(String::new()).boxed()), 3),
+    )
+        .prop_map(|(view, surfaces)| {
+            let defined: Vec<String> = surfaces.iter().enumerate().map(|(i, s)| s.replacen("surface ", &format!("surface s{i}"), 1)).collect();
+            format!("{view}\n{}", defined.join("\n"))
+        });
+    (maybe(presence(mode, true), header.boxed()), prop::collection::vec(ray_statement(mode), 0..10))
+        .prop_map(|(header, statements)| header.into_iter().chain(statements).collect::<Vec<_>>().join("\n") + "\n")
+        .boxed()
+}
+
+// ---------------------------------------------------------------------------
 // TOML
 
 /// A TOML number; Wild also gives values of other types.

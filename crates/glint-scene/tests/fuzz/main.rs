@@ -2,7 +2,7 @@
 //! the suite (cargo-fuzz needs a nightly toolchain; these need nothing).
 //!
 //! Each target builds near-valid files from a structured generator (TOML
-//! tables, NFF statements, OBJ and MTL lines, with numbers that are often NaN,
+//! tables, NFF and Rayshade statements, OBJ and MTL lines, with numbers that are often NaN,
 //! infinite, huge, tiny or negative), then mutates them: tokens deleted,
 //! duplicated, replaced by or interleaved with garbage, lines deleted, doubled
 //! or swapped, random bytes inserted, the file cut at a random byte. Some cases
@@ -42,7 +42,7 @@ use glint_scene::{LoadError, Shape};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
 
-use generate::{both_modes, Generator, mtl_text, nff_text, obj_text, toml_object, toml_text, Mode};
+use generate::{both_modes, Generator, mtl_text, nff_text, obj_text, ray_text, toml_object, toml_text, Mode};
 use mutate::{mutated, Index, Mutation};
 use oracle::{check_error, check_outcome, check_scene, write_case, CaseFile};
 
@@ -119,6 +119,7 @@ struct Tally {
 // The targets
 
 const NFF_ALPHABET: &str = "vbflcsp 0123456789.-e\n#fromatupanglehitresolution";
+const RAY_ALPHABET: &str = "eyplokfvscrnbgdtiamhu 0123456789.-e\n/*";
 const TOML_ALPHABET: &str = "[]{}=,.\"'# \n0123456789-+eabcdefghijklmnopqrstuvwxyz_";
 const OBJ_ALPHABET: &str = "vtnfolgsu /0123456789.-e\n#mtlib";
 
@@ -127,6 +128,15 @@ fn fuzz_nff() {
     let dir = tempfile::tempdir().unwrap();
     run_target("nff", mutated(both_modes(nff_text), NFF_ALPHABET), |input, tally| {
         let scene = write_case(dir.path(), "case.nff", &input.0);
+        check_outcome(glint_scene::load(&scene.path), &[&scene], tally)
+    });
+}
+
+#[test]
+fn fuzz_rayshade() {
+    let dir = tempfile::tempdir().unwrap();
+    run_target("rayshade", mutated(both_modes(ray_text), RAY_ALPHABET), |input, tally| {
+        let scene = write_case(dir.path(), "case.ray", &input.0);
         check_outcome(glint_scene::load(&scene.path), &[&scene], tally)
     });
 }
@@ -194,6 +204,11 @@ const REGRESSIONS: &[&[(&str, &[u8])]] = &[
     // and panics. Also tests/bad_input/obj_mtl_color_two_values.obj.
     &[("grey.obj", b"mtllib grey.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"), ("grey.mtl", b"newmtl a\nKd 0.5\n")],
     &[("pair.obj", b"mtllib pair.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"), ("pair.mtl", b"newmtl a\nKs 1 0\n")],
+    // A Rayshade plane with a zero normal loaded, and failed validation.
+    &[("plane.ray", b"surface s0\nplane s0 0 0 0 0 0 0\n")],
+    // A Rayshade screen so tall that the default fov of 45 is 720 degrees
+    // vertically: an error that named no line.
+    &[("tall.ray", b"screen 1 16\n")],
 ];
 
 #[test]
@@ -293,8 +308,13 @@ fn sane_files_mostly_load() {
     toml_companions(dir.path());
     write_case(dir.path(), "m.mtl", b"newmtl a\nKd 1 0 0\n");
     let mut runner = TestRunner::deterministic();
-    let targets: [(&str, Generator, &str); 4] =
-        [("nff", nff_text, "case.nff"), ("toml", toml_text, "scene.toml"), ("obj", obj_text, "case.obj"), ("mtl", mtl_text, "m.mtl")];
+    let targets: [(&str, Generator, &str); 5] = [
+        ("nff", nff_text, "case.nff"),
+        ("ray", ray_text, "case.ray"),
+        ("toml", toml_text, "scene.toml"),
+        ("obj", obj_text, "case.obj"),
+        ("mtl", mtl_text, "m.mtl"),
+    ];
     for (name, make, file) in targets {
         let mut errors = Vec::new();
         for _ in 0..200 {
