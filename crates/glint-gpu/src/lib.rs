@@ -3,8 +3,11 @@
 //! accumulated samples and reads the image back.
 //!
 //! The modules that are a subsystem of their own are public (`shaders`,
-//! `interactive`, `probe`, `display`, `schedule`, `stitch`, `kernel_dump`); the host
-//! pipeline's types are used from the crate root.
+//! `interactive`, `probe`, `display`, `schedule`, `stitch`, `kernel_dump`),
+//! and `lavapipe`'s names and measures, for tests of what Glint asks of it;
+//! the host pipeline's types are used from the crate root. Front ends
+//! describe their work (`Workload`); the driver's environment and the
+//! kernels' tuning are this crate's alone to choose.
 
 mod device;
 mod error_scope;
@@ -13,7 +16,7 @@ mod eye_tiles;
 mod frame;
 pub mod interactive;
 pub mod kernel_dump;
-mod lavapipe;
+pub mod lavapipe;
 mod output;
 mod pipelines;
 pub mod primitive_dispatch;
@@ -28,15 +31,14 @@ mod sink;
 pub mod stitch;
 mod tiles;
 mod tuning;
+mod workload;
 
 pub use device::{adapter_rank, backends, device_descriptor, driver_warning, Gpu, SceneLimits, ADAPTER_ENV, NO_ADAPTER_HINT};
-pub use lavapipe::{
-    compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_dir, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
-    LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
-};
-pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
+pub use lavapipe::RenderedScenes;
+pub use profile::{CompiledKernels, DeviceProfile, ProfileName, PACKET_EYE_RAYS, PROFILE_ENV};
 pub use eye_tiles::binning::Footprints;
 pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
+pub use workload::Workload;
 pub use frame::{Acceleration, Prepared};
 pub use output::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Channels, Format, Image,
@@ -53,6 +55,9 @@ pub use tiles::Region;
 pub enum GpuError {
     #[error("{0}")]
     NoAdapter(String),
+    /// `GLINT_PROFILE` names no profile.
+    #[error("{0}")]
+    Profile(String),
     #[error("cannot open the GPU device: {0}")]
     Device(String),
     #[error("shader error: {0}")]
