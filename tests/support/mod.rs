@@ -6,7 +6,8 @@
 //! [`Probing`], which do it under both profiles and hold the plain profile's
 //! pixels, ray counts and ray trees to the device profile's bit for bit. On
 //! lavapipe the plain profile runs about 5× slower, so an image larger than
-//! [`PLAIN_PIXELS`] is checked over a band of its rows that many pixels large.
+//! [`PLAIN_PIXELS`] is checked over a band of its rows that many pixels large,
+//! and a suite may check a subset of its scenes ([`render_device_profile`]).
 #![allow(dead_code)] // each test binary uses a different part of this module
 
 use std::path::Path;
@@ -64,6 +65,16 @@ pub fn render_with(scene: &Scene, acceleration: Acceleration) -> (Image, RayStat
 /// the view scale is chosen for the scene when left at 1. The heat map is
 /// rendered once: it counts the nodes of the BVH, whose build is the profile's.
 pub fn render_options(scene: &Scene, acceleration: Acceleration, options: RenderOptions) -> (Image, RayStats) {
+    render_profiles(scene, acceleration, options, true)
+}
+
+/// [`render_options`] under the device's profile alone (for suites that hold
+/// a subset of their scenes to the plain profile).
+pub fn render_device_profile(scene: &Scene, acceleration: Acceleration, options: RenderOptions) -> (Image, RayStats) {
+    render_profiles(scene, acceleration, options, false)
+}
+
+fn render_profiles(scene: &Scene, acceleration: Acceleration, options: RenderOptions, plain_too: bool) -> (Image, RayStats) {
     let render = |r: &Renderer, region: Option<Region>| {
         let prepared = r.prepare(scene, scene.width, scene.height, acceleration).unwrap_or_else(|e| panic!("{e}"));
         let options = RenderOptions { view_scale: prepared.view_scale(options.view), ..options };
@@ -71,7 +82,7 @@ pub fn render_options(scene: &Scene, acceleration: Acceleration, options: Render
         r.render_region(&prepared.buffers, region, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
     };
     let (image, stats) = render(renderer(), None);
-    if options.view != View::Heatmap {
+    if plain_too && options.view != View::Heatmap {
         let band = plain_band(scene.width, scene.height);
         let (plain, plain_stats) = render(plain_renderer(), Some(band));
         let rows = (band.y0 * scene.width) as usize..(band.y1 * scene.width) as usize;
