@@ -29,7 +29,7 @@ async function measure(browser, scene) {
 
 (async () => {
   const browser = await chromium.launch({
-    executablePath: "/usr/bin/chromium",
+    executablePath: require("child_process").execFileSync(require("path").join(__dirname, "../.ci/chromium"), ["--which"]).toString().trim(),
     headless: true,
     args: ["--headless=new", "--no-sandbox", "--enable-unsafe-webgpu", "--disable-gpu-sandbox", "--use-angle=vulkan", "--enable-features=Vulkan"],
   });

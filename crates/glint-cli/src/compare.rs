@@ -122,7 +122,8 @@ fn print_text(m: &Measurement, v: &Verdict) {
         };
         println!("{:<12} {value}{unit}{judged}", metric.name());
     }
-    let limit = c.max_bad_fraction.map(|f| format!(", at most {}", percent(f))).unwrap_or_default();
+    let judged = if v.within_bad_fraction() { "pass" } else { "fail" };
+    let limit = c.max_bad_fraction.map(|f| format!(", at most {}: {judged}", percent(f))).unwrap_or_default();
     println!(
         "{:<12} {} of {} pixels ({}{limit})",
         format!("above {}", c.pixel_tolerance),

@@ -39,6 +39,7 @@ pub fn run(suite: &Suite, names: &[String], grading: Grading, outputs: Outputs) 
         ));
     }
     let cases: Vec<&GradedCase> = suite.select_graded(names).map_err(|e| Failure::new(exit::USAGE, e))?;
+    let whole_class = matches!(grading, Grading::Class(_));
     let students = match grading {
         Grading::Class(dir) => Student::all_in(dir).map_err(|e| Failure::new(exit::INPUT, e))?,
         Grading::One(dir) if dir.is_dir() => vec![Student::one(dir)],
@@ -47,7 +48,7 @@ pub fn run(suite: &Suite, names: &[String], grading: Grading, outputs: Outputs) 
     let renderer = if glint_golden::needs_renderer(&cases) { Some(crate::test::renderer()?) } else { None };
     let report_images = outputs.report.is_some();
     let (grades, reference_errors) = glint_golden::grade(&cases, renderer.as_ref(), &students, report_images, &mut print_grades);
-    write_outputs(&suite.name, &grades, &outputs)?;
+    write_outputs(&suite.name, &cases, &grades, &outputs, whole_class)?;
     if reference_errors.is_empty() {
         return Ok(());
     }
@@ -66,21 +67,28 @@ fn print_grades(grades: &Grades) {
     println!("{student}: {}; {} points", glint_golden::Summary::of(&grades.outcomes), glint_golden::points_text(grades.total()));
 }
 
-fn write_outputs(suite_name: &str, grades: &[Grades], outputs: &Outputs) -> Result<(), Failure> {
+/// Writes the reports asked for; a class's report drops the folders of
+/// students no longer in it.
+fn write_outputs(suite_name: &str, cases: &[&GradedCase], grades: &[Grades], outputs: &Outputs, whole_class: bool) -> Result<(), Failure> {
     let output_error = |e: String| Failure::new(exit::OUTPUT, e);
     let write = |path: &Path, text: String| {
         glint_gpu::write_atomically(path, text.as_bytes()).map_err(|e| output_error(format!("{}: cannot write: {e}", path.display())))
     };
     // --gradescope comes only with --submission: one student.
     if let (Some(path), [student]) = (outputs.gradescope, grades) {
-        write(path, glint_golden::results_json(suite_name, student))?;
+        write(path, glint_golden::results_json(suite_name, cases, student))?;
     }
     if let Some(path) = outputs.junit {
         let suites: Vec<(&str, &[glint_golden::Outcome])> = grades.iter().map(|g| (g.student.name.as_str(), &g.outcomes[..])).collect();
         write(path, glint_golden::junit_xml_suites(suite_name, &suites))?;
     }
     if let Some(dir) = outputs.report {
-        let index = glint_golden::write_class_report(dir, suite_name, grades).map_err(output_error)?;
+        let index = glint_golden::write_class_report(dir, suite_name, cases, grades).map_err(output_error)?;
+        if whole_class {
+            for folder in glint_golden::remove_former_students(dir, grades).map_err(output_error)? {
+                println!("removed {}: no longer in the class", folder.display());
+            }
+        }
         println!("wrote {}", index.display());
     }
     Ok(())

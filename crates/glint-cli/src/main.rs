@@ -4,6 +4,7 @@ mod bench;
 mod bench_cold;
 mod check;
 mod compare;
+mod effects;
 mod frames;
 mod grade;
 mod info;
@@ -107,6 +108,14 @@ impl From<glint_gpu::GpuError> for Failure {
 }
 
 fn main() -> ExitCode {
+    // A closed stdout (`glint compare A B | head -1`) ends a command as it
+    // ends `cat`: quietly, by SIGPIPE. Rust ignores the signal, which turns
+    // the next print into a panic.
+    #[cfg(unix)]
+    // SAFETY: no thread has been started yet, and SIG_DFL is a valid handler.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         // --help and --version print in full.

@@ -44,6 +44,8 @@ pub struct ProbeArgs {
     /// Follow every reflection and refraction ray to the maximum depth
     #[arg(long)]
     no_cutoff: bool,
+    #[command(flatten)]
+    effects: crate::effects::EffectArgs,
     /// One JSON object on standard output
     #[arg(long)]
     json: bool,
@@ -61,6 +63,7 @@ pub fn run(args: &ProbeArgs) -> Result<(), Failure> {
     if args.no_cutoff {
         scene.render.cutoff = 0.0;
     }
+    args.effects.apply(&mut scene.render);
     let (width, height) = (args.width.unwrap_or(scene.width), args.height.unwrap_or(scene.height));
     if args.x >= width || args.y >= height {
         return Err(Failure::new(

@@ -47,6 +47,8 @@ pub struct RenderArgs {
     /// little it contributes (as classic benchmark procedures require)
     #[arg(long)]
     no_cutoff: bool,
+    #[command(flatten)]
+    effects: crate::effects::EffectArgs,
     /// How an NFF file's `angle` is read: from the centres of the outer pixel rows
     /// (the NFF text) or from the image edges (what many exporters write)
     #[arg(long, value_enum, default_value_t = NffAngleArg::Centers)]
@@ -311,6 +313,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     if args.no_cutoff {
         scene.render.cutoff = 0.0;
     }
+    args.effects.apply(&mut scene.render);
 
     let rendered_scenes = glint_gpu::RenderedScenes::on_this_machine();
     let frames = plan.frames.len() as u64;

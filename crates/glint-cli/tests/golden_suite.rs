@@ -94,7 +94,7 @@ fn a_changed_golden_fails_with_junit_xml_and_a_report() {
     let out_lines = lines(&o);
     assert!(out_lines[0].starts_with("ok      ball: "), "{out_lines:?}");
     assert!(out_lines[1].starts_with("FAIL    sphere: flip "), "{out_lines:?}");
-    assert!(out_lines[1].contains("(at most 0.5%), worst ("), "{out_lines:?}");
+    assert!(out_lines[1].contains(" of pixels above 0.2 (more than the 0.5% allowed), worst ("), "{out_lines:?}");
     assert_eq!(out_lines[2], "1 passed, 1 failed");
 
     check_junit(&std::fs::read_to_string(&junit).unwrap(), dir.path());

@@ -4,6 +4,8 @@
 //! rendering with Glint and then changing the PNGs, is graded in one run
 //! against a reference Glint renders and one given as a file. That run writes
 //! Gradescope results.json, JUnit, a report per student and a class summary.
+//! A class folder as it arrives (misnamed files, `__MACOSX`, names that
+//! collide, students who left) is graded with a reference file, no GPU.
 
 mod suite;
 
@@ -99,7 +101,7 @@ fn a_class_is_graded_in_one_run_with_every_report() {
     assert!(lines[0].starts_with("ok      ann/sphere: flip 0 <= 0.01") && lines[0].ends_with("(10/10 points)"), "{out}");
     assert_eq!(lines[2], "ann: 2 passed, 0 failed; 15/15 points");
     assert!(lines[3].starts_with("FAIL    bob/sphere: flip ") && lines[3].contains(", worst region 4x4 at ("), "{out}");
-    assert!(lines[3].ends_with("(4/10 points)"), "{out}");
+    assert!(lines[3].ends_with("; partial credit: flip <= 0.2 (4/10 points)"), "{out}");
     assert_eq!(lines[5], "bob: 1 passed, 1 failed; 9/15 points");
     assert_eq!(lines[6], "FAIL    cat/sphere: wrong size: the submission is 24x18, the reference 48x36 (0/10 points)");
     let missing = root.join("subs/cat/cat-ball.png");
@@ -200,4 +202,49 @@ fn grading_errors_are_one_line() {
     let o = glint(&["test", arg(&manifest), "--submissions", arg(&root.join("subs"))]);
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
     assert!(stderr(&o).starts_with(&format!("glint: case `sphere`: reference: {}:2:", root.join("scenes/sphere.toml").display())), "{}", stderr(&o));
+}
+
+#[test]
+fn a_class_folder_is_graded_as_it_arrives() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path();
+    let subs = root.join("subs");
+    let image = image::RgbImage::from_fn(16, 12, |x, y| image::Rgb([(x * 15) as u8, (y * 20) as u8, 120]));
+    let files = ["ann/Ball.png", "bob lee/ball.png", "bob_lee/ball.png", "cy/hw2/ball.png", "dee/ball.ppm", "__MACOSX/ann/._Ball.png", ".git/ball.png"];
+    for file in files {
+        let path = subs.join(file);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        image.save_with_format(&path, image::ImageFormat::Png).unwrap();
+    }
+    image.save(root.join("ref.png")).unwrap();
+    std::fs::write(root.join("course.toml"), "[[case]]\nname = \"ball\"\nimage = \"ball.png\"\ngolden = \"ref.png\"\npoints = 2\n").unwrap();
+    // A report from before: a student who has left, and a folder of the teacher's.
+    let report = root.join("report");
+    for folder in ["zed", "notes"] {
+        std::fs::create_dir_all(report.join(folder)).unwrap();
+    }
+    std::fs::write(report.join("zed/results.json"), "{}").unwrap();
+    std::fs::write(report.join("notes/todo.txt"), "").unwrap();
+
+    let o = glint(&["test", arg(&root.join("course.toml")), "--submissions", arg(&subs), "--report", arg(&report)]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
+    let missing = |student: &str| format!("FAIL    {student}/ball: no image: {} is missing; did you mean", subs.join(student).join("ball.png").display());
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], format!("{} Ball.png (the letter case differs)? (0/2 points)", missing("ann")), "{out}");
+    assert!(lines[2].starts_with("ok      bob lee/ball: flip 0 <= 0.01") && lines[4].starts_with("ok      bob_lee/ball: flip 0"), "{out}");
+    assert_eq!(lines[6], format!("{} hw2/ball.png (inside the folder hw2/)? (0/2 points)", missing("cy")), "{out}");
+    assert_eq!(lines[8], format!("{} ball.ppm (a .ppm file, not .png)? (0/2 points)", missing("dee")), "{out}");
+    assert_eq!(lines[10], format!("removed {}: no longer in the class", report.join("zed").display()), "{out}");
+    assert_eq!(lines[11], format!("wrote {}", report.join("index.html").display()), "{out}");
+    assert_eq!(lines.len(), 12, "archivers' and hidden folders are no students: {out}");
+
+    // Two students whose names make one folder name each have their own.
+    let class = std::fs::read_to_string(report.join("index.html")).unwrap();
+    for (student, folder) in [("bob lee", "bob_lee-2"), ("bob_lee", "bob_lee")] {
+        assert_eq!(json(&report.join(folder).join("results.json"))["score"], 2.0, "{student}");
+        assert!(class.contains(&format!("<a href=\"{folder}/index.html\">{student}</a>")), "{class}");
+    }
+    assert!(!report.join("zed").exists() && report.join("notes/todo.txt").is_file());
+    assert!(!report.join("__MACOSX").exists() && !report.join(".git").exists());
 }

@@ -438,3 +438,43 @@ fn the_tutorials_probe_printout_is_what_probe_prints() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(&tutorial[start..end], stdout(&o));
 }
+
+/// glint with its stdout a pipe whose reading end is already closed, as
+/// `glint … | head -1` leaves it once head has its line.
+#[cfg(unix)]
+fn glint_into_a_closed_pipe(args: &[&str]) -> Output {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    Command::new(env!("CARGO_BIN_EXE_glint")).args(args).stdout(writer).output().expect("glint runs")
+}
+
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_ends_every_command_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    let dir = tempfile::tempdir().unwrap();
+    let image = dir.path().join("a.png");
+    image::RgbImage::from_pixel(8, 6, image::Rgb([90, 120, 150])).save(&image).unwrap();
+    let image = image.display().to_string();
+    std::fs::create_dir(dir.path().join("ann")).unwrap();
+    std::fs::copy(&image, dir.path().join("ann/a.png")).unwrap();
+    let manifest = dir.path().join("course.toml");
+    std::fs::write(&manifest, "[[case]]\nimage = \"a.png\"\ngolden = \"a.png\"\n").unwrap();
+    let (manifest, class) = (manifest.display().to_string(), dir.path().display().to_string());
+    let showcase = showcase();
+    let commands: [&[&str]; 6] = [
+        &["compare", &image, &image],
+        &["check", &showcase],
+        &["spd", "balls"],
+        &["test", &manifest, "--submissions", &class],
+        &["info"],
+        &["--help"],
+    ];
+    for args in commands {
+        let o = glint_into_a_closed_pipe(args);
+        // Ended by SIGPIPE at its first line, as `cat` would be: no panic, no
+        // message (a driver may still say its piece on stderr).
+        assert_eq!(o.status.signal(), Some(libc::SIGPIPE), "glint {args:?}: {:?}: {}", o.status, stderr(&o));
+        assert!(!stderr(&o).contains("panicked") && !stderr(&o).contains("glint:"), "glint {args:?}: {}", stderr(&o));
+    }
+}

@@ -1,6 +1,6 @@
 //! docs/scale-out.md's Slurm recipes, run by a real Slurm: a throwaway
 //! single-node cluster (tests/slurm/cluster.sh: munged, slurmctld and slurmd
-//! on 127.0.0.1, which `bash .ci/setup` installs) runs the job scripts in
+//! on 127.0.0.1, which `bash .ci/setup --tests` installs) runs the job scripts in
 //! docs/scale-out/, the same files the page shows. The stitched still and the
 //! frames are, byte for byte, the files of one `glint render`, also after a
 //! shard fails and is rerun alone and after a running shard is killed and
@@ -92,7 +92,7 @@ fn start_cluster() -> Result<Cluster, String> {
             let mut message = String::new();
             let _ = child.stderr.take().unwrap().read_to_string(&mut message);
             let script = script.display();
-            Err(format!("the test's Slurm cluster ({script}; `bash .ci/setup` installs slurm-wlm and munge) did not start:\n{message}"))
+            Err(format!("the test's Slurm cluster ({script}; `bash .ci/setup --tests` installs slurm-wlm and munge) did not start:\n{message}"))
         }
     }
 }

@@ -1,4 +1,4 @@
-//! `glint view` for real: under Xvfb (`xvfb-run`, which `bash .ci/setup`
+//! `glint view` for real: under Xvfb (`xvfb-run`, which `bash .ci/setup --tests`
 //! installs) the binary opens its window, renders the showcase for a few
 //! seconds and exits cleanly when the window is asked to close, as a window
 //! manager's close button asks (WM_DELETE_WINDOW). It is started with no scene
@@ -52,7 +52,7 @@ fn under_xvfb(command: &[&OsStr], dir: &Path, env: &[(&str, Option<&OsStr>)]) ->
         .stderr(Stdio::piped())
         .process_group(0)
         .spawn()
-        .expect("xvfb-run must be installed (bash .ci/setup installs it)");
+        .expect("xvfb-run must be installed (bash .ci/setup --tests installs it)");
     Group(child)
 }
 

@@ -7,7 +7,7 @@ use glint_encoding::gpu_types::{Filter, View};
 use glint_gpu::{Acceleration, Image, RenderOptions, Renderer, ToneMap};
 use glint_scene::MAX_IMAGE_SIDE;
 use glint_scene::nff::NffAngle;
-use glint_scene::LoadOptions;
+use glint_scene::{LoadOptions, Scene};
 
 use crate::settings::{FilterName, NffAngleName, RenderSettings, ToneMapName, ViewName};
 
@@ -22,6 +22,13 @@ pub struct Rendered {
 /// Renders `scene` with `settings`; the error is one line naming the scene
 /// file or the GPU problem.
 pub fn render(renderer: &Renderer, scene_file: &Path, settings: &RenderSettings) -> Result<Rendered, String> {
+    let scene = load(scene_file, settings)?;
+    render_scene(renderer, &scene, scene_file, settings)
+}
+
+/// Reads `scene_file` as `settings` say (NFF's angle) and applies the
+/// settings that change the scene: depth, cutoff and the effect switches.
+pub fn load(scene_file: &Path, settings: &RenderSettings) -> Result<Scene, String> {
     let load_options = LoadOptions {
         nff_angle: match settings.nff_angle {
             Some(NffAngleName::Edges) => NffAngle::Edges,
@@ -29,14 +36,22 @@ pub fn render(renderer: &Renderer, scene_file: &Path, settings: &RenderSettings)
         },
     };
     let mut scene = glint_scene::load_with(scene_file, &load_options).map_err(|e| e.to_string())?;
-    let (width, height) = image_size(settings, scene.width, scene.height).map_err(|e| format!("{}: {e}", scene_file.display()))?;
     if let Some(depth) = settings.max_depth {
         scene.render.max_depth = depth.0;
     }
     if settings.no_cutoff == Some(true) {
         scene.render.cutoff = 0.0;
     }
-    let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh).map_err(|e| e.to_string())?;
+    scene.render.shadows &= settings.shadows.unwrap_or(true);
+    scene.render.reflections &= settings.reflection.unwrap_or(true);
+    scene.render.refractions &= settings.refraction.unwrap_or(true);
+    Ok(scene)
+}
+
+/// Renders a loaded `scene` (read from `scene_file`) with `settings`.
+pub fn render_scene(renderer: &Renderer, scene: &Scene, scene_file: &Path, settings: &RenderSettings) -> Result<Rendered, String> {
+    let (width, height) = image_size(settings, scene.width, scene.height).map_err(|e| format!("{}: {e}", scene_file.display()))?;
+    let prepared = renderer.prepare(scene, width, height, Acceleration::Bvh).map_err(|e| e.to_string())?;
     let view = view_of(settings.view);
     let options = RenderOptions {
         view,
@@ -61,7 +76,12 @@ pub fn render(renderer: &Renderer, scene_file: &Path, settings: &RenderSettings)
     let image = if view == View::Depth { image.with_misses_at_infinity() } else { image };
     let image = if view.is_data() && view != View::Normal { one_number_per_pixel(image) } else { image };
     let view_name = settings.view.map_or("shaded", ViewName::name);
-    let settings = format!("view {view_name}, max depth {}, {} spp, {width}x{height}", scene.render.max_depth, options.spp);
+    let mut settings = format!("view {view_name}, max depth {}, {} spp, {width}x{height}", scene.render.max_depth, options.spp);
+    for (on, ray) in [(scene.render.shadows, "shadow"), (scene.render.reflections, "reflected"), (scene.render.refractions, "refracted")] {
+        if !on {
+            settings += &format!(", no {ray} rays");
+        }
+    }
     Ok(Rendered { image, settings })
 }
 

@@ -6,7 +6,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use crate::gradescope::results_json;
-use crate::grading::Grades;
+use crate::grading::{GradedCase, Grades};
 use crate::html::{points_text, write_file, write_report, STYLE};
 use crate::markup::escape;
 
@@ -28,15 +28,33 @@ const SORT_SCRIPT: &str = "for (const [column, th] of document.querySelectorAll(
 
 /// Writes every student's report and results.json, then the class summary;
 /// returns the summary's path. The error names the file that failed.
-pub fn write_class_report(dir: &Path, suite_name: &str, grades: &[Grades]) -> Result<PathBuf, String> {
+pub fn write_class_report(dir: &Path, suite_name: &str, cases: &[&GradedCase], grades: &[Grades]) -> Result<PathBuf, String> {
     for student in grades {
-        let student_dir = dir.join(student.student.file_stem());
+        let student_dir = dir.join(&student.student.report_folder);
         write_report(&student_dir, &format!("{suite_name}: {}", student.student.name), &student.outcomes)?;
-        write_file(&student_dir.join("results.json"), results_json(suite_name, student).as_bytes())?;
+        write_file(&student_dir.join("results.json"), results_json(suite_name, cases, student).as_bytes())?;
     }
     let index = dir.join("index.html");
     write_file(&index, class_page(suite_name, grades).as_bytes())?;
     Ok(index)
+}
+
+/// Removes the report folders in `dir` of students not in `grades` (a
+/// student's folder has a results.json), so that the report is the class as
+/// graded now; returns the folders removed. Other folders are left alone.
+pub fn remove_former_students(dir: &Path, grades: &[Grades]) -> Result<Vec<PathBuf>, String> {
+    let Ok(entries) = std::fs::read_dir(dir) else { return Ok(Vec::new()) };
+    let current: Vec<&str> = grades.iter().map(|g| g.student.report_folder.as_str()).collect();
+    let mut removed = Vec::new();
+    for path in entries.flatten().map(|e| e.path()) {
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        if path.join("results.json").is_file() && !current.contains(&name.as_str()) {
+            std::fs::remove_dir_all(&path).map_err(|e| format!("{}: cannot remove a former student's report: {e}", path.display()))?;
+            removed.push(path);
+        }
+    }
+    removed.sort();
+    Ok(removed)
 }
 
 /// The summary: a row per student with the total and each case's points,
@@ -60,7 +78,7 @@ pub fn class_page(suite_name: &str, grades: &[Grades]) -> String {
         let _ = write!(
             html,
             "<tr><td data-sort=\"{name}\"><a href=\"{}/index.html\">{name}</a></td><td data-sort=\"{}\">{}</td>",
-            escape(&student.student.file_stem()),
+            escape(&student.student.report_folder),
             total.earned,
             points_text(total)
         );

@@ -92,6 +92,8 @@ impl Verdict {
     /// One line: the metric against its threshold, the pixels above tolerance
     /// and the worst pixel (when any differs), e.g.
     /// `flip 0.031200 > 0.01, 1.20% of pixels above 0.2 (at most 0.5%), worst (83, 41)`.
+    /// What failed comes first, so that a line that starts like a pass is one:
+    /// `11.6% of pixels above 0.2, more than the 2% allowed (flip 0.045684 <= 0.05)`.
     pub fn summary(&self) -> String {
         let c = &self.criteria;
         let relation = match (c.metric.higher_is_better(), self.within_threshold()) {
@@ -100,11 +102,16 @@ impl Verdict {
             (true, true) => ">=",
             (true, false) => "<",
         };
-        let mut line = format!("{} {} {relation} {}", c.metric.name(), number(self.value), c.threshold);
-        line += &format!(", {} of pixels above {}", percent(self.fraction_above()), c.pixel_tolerance);
-        if let Some(limit) = c.max_bad_fraction {
-            line += &format!(" (at most {})", percent(limit));
-        }
+        let mean = format!("{} {} {relation} {}", c.metric.name(), number(self.value), c.threshold);
+        let above = format!("{} of pixels above {}", percent(self.fraction_above()), c.pixel_tolerance);
+        let mut line = match c.max_bad_fraction {
+            Some(limit) if !self.within_bad_fraction() && self.within_threshold() => {
+                format!("{above}, more than the {} allowed ({mean})", percent(limit))
+            }
+            Some(limit) if !self.within_bad_fraction() => format!("{mean}, {above} (more than the {} allowed)", percent(limit)),
+            Some(limit) => format!("{mean}, {above} (at most {})", percent(limit)),
+            None => format!("{mean}, {above}"),
+        };
         if self.worst.error > 0.0 {
             line += &format!(", worst ({}, {})", self.worst.x, self.worst.y);
         }
@@ -176,6 +183,12 @@ mod tests {
         let flip = judge(&m, &Criteria { threshold: 1.0, ..Criteria::for_metric(Metric::Flip) });
         assert!((1..=9).contains(&flip.pixels_above), "{}", flip.pixels_above);
         assert!(flip.within_threshold() && !flip.within_bad_fraction() && !flip.passed());
+        // Failing on its bad pixels alone, the line says so first.
+        let line = flip.summary();
+        assert!(line.starts_with(&format!("{} of pixels above 0.2, more than the 0.5% allowed (flip ", percent(flip.fraction_above()))), "{line}");
+        assert!(line.contains(" <= 1), worst (7, 5)"), "{line}");
+        let both = judge(&m, &Criteria { threshold: 1e-4, ..Criteria::for_metric(Metric::Flip) });
+        assert!(both.summary().starts_with("flip ") && both.summary().contains(" > 0.0001, ") && both.summary().contains("(more than the 0.5% allowed)"), "{}", both.summary());
     }
 
     #[test]

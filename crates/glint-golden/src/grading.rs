@@ -4,6 +4,7 @@
 //! run, however many students there are; a student's missing, unreadable or
 //! wrongly sized image is that case's verdict, and the run goes on.
 
+use std::cell::OnceCell;
 use std::path::{Path, PathBuf};
 
 use glint_gpu::{Format, Image, Renderer};
@@ -11,11 +12,13 @@ use glint_gpu::{Format, Image, Renderer};
 use crate::case_render::{render, Rendered};
 use crate::comparison::{compare, Roles};
 use crate::criteria::Criteria;
+use crate::diagnosis::{diagnose, variants, Variant};
 use crate::image_io::{self, LinearImage};
 use crate::manifest::file_stem_of;
 use crate::runner::{Outcome, Points, Status};
 use crate::scoring::Scoring;
-use crate::settings::RenderSettings;
+use crate::settings::{RenderSettings, ViewName, Visibility};
+use crate::submission_folder::{is_not_work, look_alike};
 
 /// What `image` may hold in its path: the student's folder name.
 pub const STUDENT_PLACEHOLDER: &str = "{student}";
@@ -33,6 +36,9 @@ pub struct GradedCase {
     pub render: RenderSettings,
     pub criteria: Criteria,
     pub scoring: Scoring,
+    /// When Gradescope shows the case's test to the student; `None` leaves it
+    /// to Gradescope (visible).
+    pub visibility: Option<Visibility>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -55,52 +61,57 @@ pub struct Student {
     /// The folder's name.
     pub name: String,
     pub dir: PathBuf,
+    /// The student's folder in a report: the name made safe for a file name,
+    /// and unique in the class.
+    pub report_folder: String,
 }
 
 impl Student {
     /// Every folder in `dir`, sorted by name, each a student; hidden ones
-    /// (`.git`) are not.
+    /// (`.git`) and archivers' (`__MACOSX`) are not.
     pub fn all_in(dir: &Path) -> Result<Vec<Student>, String> {
         let cannot = |e: std::io::Error| format!("{}: cannot read the submissions directory: {e}", dir.display());
-        let mut students = Vec::new();
+        let mut folders = Vec::new();
         for entry in std::fs::read_dir(dir).map_err(cannot)? {
             let path = entry.map_err(cannot)?.path();
             let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-            if path.is_dir() && !name.starts_with('.') {
-                students.push(Student { name, dir: path });
+            if path.is_dir() && !is_not_work(&name) {
+                folders.push((name, path));
             }
         }
-        if students.is_empty() {
+        if folders.is_empty() {
             return Err(format!("{}: no student folders in the submissions directory (one folder per student)", dir.display()));
         }
-        students.sort_by(|a, b| a.name.cmp(&b.name));
-        // Two folders whose names differ only in characters a file name
-        // cannot keep would share one report folder.
-        let mut stems = std::collections::HashMap::new();
-        for student in &students {
-            if let Some(earlier) = stems.insert(student.file_stem(), &student.name) {
-                return Err(format!(
-                    "{}: students `{earlier}` and `{}` would share the report folder `{}`",
-                    dir.display(),
-                    student.name,
-                    student.file_stem()
-                ));
-            }
-        }
-        Ok(students)
+        folders.sort();
+        let report_folders = unique_report_folders(folders.iter().map(|(name, _)| name.as_str()));
+        Ok(folders.into_iter().zip(report_folders).map(|((name, dir), report_folder)| Student { name, dir, report_folder }).collect())
     }
 
     /// A single submission folder, as Gradescope gives one: the student is
     /// named after the folder.
     pub fn one(dir: &Path) -> Student {
         let absolute = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
-        let name = absolute.file_name().map_or_else(|| "submission".into(), |n| n.to_string_lossy().into_owned());
-        Student { name, dir: dir.to_path_buf() }
+        let name: String = absolute.file_name().map_or_else(|| "submission".into(), |n| n.to_string_lossy().into_owned());
+        Student { report_folder: file_stem_of(&name), name, dir: dir.to_path_buf() }
     }
+}
 
-    pub fn file_stem(&self) -> String {
-        file_stem_of(&self.name)
-    }
+/// A report folder for each name, in order: the name made safe for a file
+/// name; where two names would share one (`a b`, `a_b`), a name already safe
+/// keeps it and the others get `-2`, `-3`…
+fn unique_report_folders<'a>(names: impl Iterator<Item = &'a str> + Clone) -> Vec<String> {
+    let mut taken: std::collections::HashSet<String> = names.clone().filter(|n| file_stem_of(n) == *n).map(String::from).collect();
+    names
+        .map(|name| {
+            let stem = file_stem_of(name);
+            if stem == name {
+                return stem;
+            }
+            let folder = std::iter::once(stem.clone()).chain((2..).map(|k| format!("{stem}-{k}"))).find(|f| !taken.contains(f)).expect("an unbounded list");
+            taken.insert(folder.clone());
+            folder
+        })
+        .collect()
 }
 
 /// A student's outcomes, one per case in the suite's order.
@@ -120,6 +131,9 @@ impl Grades {
 /// A case's reference as made once for the run.
 struct Prepared {
     image: Result<ReferenceImage, String>,
+    /// The scene's variants with one effect changed, rendered at the first
+    /// submission that fails (`diagnosis.rs`); none for a reference file.
+    variants: OnceCell<Vec<Variant>>,
     /// The render settings in words, or the reference file's size.
     settings: Option<String>,
     file: (&'static str, PathBuf),
@@ -128,19 +142,19 @@ struct Prepared {
 enum ReferenceImage {
     /// A render as it reads back from a PNG, and from a float file, made once
     /// for every student.
-    Rendered { png: LinearImage, float: LinearImage },
+    Rendered { image: Image, png: LinearImage, float: LinearImage },
     Read(LinearImage),
 }
 
 impl ReferenceImage {
     fn rendered(image: &Image) -> ReferenceImage {
-        ReferenceImage::Rendered { png: LinearImage::from_render(image, Format::Png), float: LinearImage::from_render(image, Format::Exr) }
+        ReferenceImage::Rendered { image: image.clone(), png: LinearImage::from_render(image, Format::Png), float: LinearImage::from_render(image, Format::Exr) }
     }
 
     /// A render is compared as it reads back in the submission's format.
     fn linear(&self, format: Format) -> &LinearImage {
         match self {
-            ReferenceImage::Rendered { png, float } => if format == Format::Png { png } else { float },
+            ReferenceImage::Rendered { png, float, .. } => if format == Format::Png { png } else { float },
             ReferenceImage::Read(image) => image,
         }
     }
@@ -171,7 +185,7 @@ pub fn grade(
     let grades = students
         .iter()
         .map(|student| {
-            let outcomes = cases.iter().zip(&prepared).map(|(case, p)| grade_one(case, p, student, report_images)).collect();
+            let outcomes = cases.iter().zip(&prepared).map(|(case, p)| grade_one(case, p, renderer, student, report_images)).collect();
             let grades = Grades { student: student.clone(), outcomes };
             on_grades(&grades);
             grades
@@ -190,18 +204,19 @@ fn prepare(case: &GradedCase, renderer: Option<&Renderer>) -> Prepared {
                 Ok(Rendered { image, settings }) => (Ok(ReferenceImage::rendered(&image)), Some(settings)),
                 Err(e) => (Err(e), None),
             };
-            Prepared { image, settings, file: ("reference scene", scene.clone()) }
+            Prepared { image, variants: OnceCell::new(), settings, file: ("reference scene", scene.clone()) }
         }
         Reference::File(file) => {
             let read = image_io::read(file).map_err(|e| e.to_string());
             let settings = read.as_ref().ok().map(|r| format!("reference image, {}x{}", r.width, r.height));
-            Prepared { image: read.map(ReferenceImage::Read), settings, file: ("reference", file.clone()) }
+            Prepared { image: read.map(ReferenceImage::Read), variants: OnceCell::new(), settings, file: ("reference", file.clone()) }
         }
     }
 }
 
-fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_images: bool) -> Outcome {
-    let image = student.dir.join(case.image.replace(STUDENT_PLACEHOLDER, &student.name));
+fn grade_one(case: &GradedCase, prepared: &Prepared, renderer: Option<&Renderer>, student: &Student, report_images: bool) -> Outcome {
+    let relative = case.image.replace(STUDENT_PLACEHOLDER, &student.name);
+    let image = student.dir.join(&relative);
     let mut outcome = Outcome {
         name: case.name.clone(),
         file_stem: case.file_stem(),
@@ -222,6 +237,9 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_i
     if !image.exists() {
         outcome.status = Status::NoImage;
         outcome.detail = format!("no image: {} is missing", image.display());
+        if let Some(found) = look_alike(&student.dir, Path::new(&relative)) {
+            outcome.detail += &format!("; did you mean {found}?");
+        }
         return outcome;
     }
     let submitted = match image_io::read(&image) {
@@ -233,11 +251,38 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, student: &Student, report_i
     };
     let format = image_io::format_of(&image).expect("a read image has a known format");
     let comparison = compare(reference.linear(format), &submitted, &case.criteria, ROLES, report_images);
-    outcome.status = if comparison.passed() { Status::Passed } else { Status::Mismatch };
-    outcome.points = Some(Points { earned: case.scoring.earned(comparison.verdict.as_ref()), possible: case.scoring.points });
+    let passed = comparison.passed();
+    outcome.status = if passed { Status::Passed } else { Status::Mismatch };
+    let award = case.scoring.award(comparison.verdict.as_ref());
+    outcome.points = Some(Points { earned: award.points, possible: case.scoring.points });
     outcome.detail = comparison.detail;
+    // A failing image says which band, if any, its points came from, then
+    // what it most likely got wrong.
+    if !passed && comparison.verdict.is_some() {
+        if !case.scoring.partial.is_empty() {
+            outcome.detail += &match award.band {
+                Some(band) => format!("; partial credit: {}", band.conditions(&case.criteria)),
+                None => "; no partial-credit band holds".to_string(),
+            };
+        }
+        let variants = prepared.variants.get_or_init(|| diagnosis_variants(case, reference, renderer));
+        if let Some(diagnosis) = diagnose(&submitted, format, reference.linear(format), variants) {
+            outcome.detail += &format!("; {}", diagnosis.sentence());
+        }
+    }
     outcome.images = comparison.images;
     outcome
+}
+
+/// The case's variants for diagnosis: a rendered scene's, or none. A variant
+/// that cannot be rendered only loses the diagnosis, not the grade.
+fn diagnosis_variants(case: &GradedCase, reference: &ReferenceImage, renderer: Option<&Renderer>) -> Vec<Variant> {
+    match (&case.reference, reference, renderer) {
+        (Reference::Scene(scene), ReferenceImage::Rendered { image, .. }, Some(renderer)) if case.render.view.is_none_or(|v| v == ViewName::Shaded) => {
+            variants(renderer, scene, &case.render, image).unwrap_or_default()
+        }
+        _ => Vec::new(),
+    }
 }
 
 #[cfg(test)]
@@ -247,19 +292,25 @@ mod tests {
     #[test]
     fn students_are_the_folders_in_name_order() {
         let dir = tempfile::tempdir().unwrap();
-        for folder in ["zoe", "ann", ".git"] {
+        for folder in ["zoe", "ann", ".git", "__MACOSX"] {
             std::fs::create_dir(dir.path().join(folder)).unwrap();
         }
         std::fs::write(dir.path().join("notes.txt"), "").unwrap();
         let names: Vec<String> = Student::all_in(dir.path()).unwrap().into_iter().map(|s| s.name).collect();
         assert_eq!(names, ["ann", "zoe"]);
         assert_eq!(Student::one(&dir.path().join("zoe")).name, "zoe");
-        for folder in ["ann lee", "ann-a", "ann_lee"] {
-            std::fs::create_dir(dir.path().join(folder)).unwrap();
-        }
-        let e = Student::all_in(dir.path()).unwrap_err();
-        assert!(e.ends_with("students `ann lee` and `ann_lee` would share the report folder `ann_lee`"), "{e}");
         let empty = tempfile::tempdir().unwrap();
         assert!(Student::all_in(empty.path()).unwrap_err().ends_with("no student folders in the submissions directory (one folder per student)"));
+    }
+
+    #[test]
+    fn students_whose_names_collide_get_their_own_report_folders() {
+        let dir = tempfile::tempdir().unwrap();
+        for folder in ["ann lee", "ann-a", "ann_lee", "ann:lee", "bo b", "bo_b-2"] {
+            std::fs::create_dir(dir.path().join(folder)).unwrap();
+        }
+        let folders: Vec<(String, String)> = Student::all_in(dir.path()).unwrap().into_iter().map(|s| (s.name, s.report_folder)).collect();
+        let expected = [("ann lee", "ann_lee-2"), ("ann-a", "ann-a"), ("ann:lee", "ann_lee-3"), ("ann_lee", "ann_lee"), ("bo b", "bo_b"), ("bo_b-2", "bo_b-2")];
+        assert_eq!(folders, expected.map(|(a, b)| (a.to_string(), b.to_string())));
     }
 }

@@ -13,7 +13,7 @@ use crate::criteria::Criteria;
 use crate::grading::{GradedCase, Reference};
 use crate::image_io;
 use crate::scoring::{BandDef, Scoring};
-use crate::settings::{Checked, CompareSettings, PositiveFinite, RenderSettings};
+use crate::settings::{Checked, CompareSettings, PositiveFinite, RenderSettings, Visibility};
 
 /// One scene, rendered and compared with one golden image.
 #[derive(Debug, Clone, PartialEq)]
@@ -77,6 +77,7 @@ struct CaseDef {
     points: Option<Checked<PositiveFinite>>,
     #[serde(default)]
     partial: Vec<Spanned<BandDef>>,
+    visibility: Option<Visibility>,
     #[serde(default)]
     render: RenderSettings,
     #[serde(default)]
@@ -254,6 +255,9 @@ fn case_of(def: &CaseDef, base: &Path, render: &RenderSettings, compare: &Compar
         if def.points.is_some() || !def.partial.is_empty() {
             return fail("points: only a case with an `image` to grade earns points");
         }
+        if def.visibility.is_some() {
+            return fail("visibility: only a case with an `image` to grade is a Gradescope test");
+        }
         let Some(scene) = scene else { return fail(NO_SCENE) };
         let golden = base.join(def.golden.clone().unwrap_or_else(|| PathBuf::from(format!("{name}.png"))));
         check_golden(&golden).map_err(|m| (None, m))?;
@@ -271,7 +275,7 @@ fn case_of(def: &CaseDef, base: &Path, render: &RenderSettings, compare: &Compar
         (None, None) => return fail("image: a graded `image` needs its reference: a `scene` for Glint to render, or a `golden` file"),
     };
     let scoring = Scoring::of(def.points.map(|p| p.value), &def.partial, &criteria)?;
-    Ok(Parsed::Graded(GradedCase { name, image: image.clone(), reference, render, criteria, scoring }))
+    Ok(Parsed::Graded(GradedCase { name, image: image.clone(), reference, render, criteria, scoring, visibility: def.visibility }))
 }
 
 fn scene_cases(def: &ScenesDef, base: &Path, render: &RenderSettings, compare: &CompareSettings) -> Result<Vec<Case>, String> {
@@ -447,6 +451,8 @@ render = { spp = 1, width = 64, height = 48 }
             ("name = \"empty\"\n", "", "no cases"),
             ("[[case]]\ngolden = \"a.png\"\n", ":1:", "scene: a case needs a `scene` (or an `image` to grade)"),
             ("[[case]]\nscene = \"a.toml\"\npoints = 3\n", ":1:", "points: only a case with an `image` to grade earns points"),
+            ("[[case]]\nscene = \"a.toml\"\nvisibility = \"hidden\"\n", ":1:", "visibility: only a case with an `image` to grade is a Gradescope test"),
+            ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\nvisibility = \"later\"\n", ":4:", "unknown variant `later`"),
             ("[[case]]\nimage = \"a.png\"\n", ":1:", "image: a graded `image` needs its reference"),
             ("[[case]]\nimage = \"a.png\"\nscene = \"a.toml\"\ngolden = \"a.png\"\n", ":1:", "not both"),
             ("[[case]]\nimage = \"{student}.jpg\"\nscene = \"a.toml\"\n", ":1:", "image: {student}.jpg: use a .png, .exr or .pfm file"),
@@ -489,6 +495,7 @@ name = "room"
 image = "room.exr"
 golden = "refs/room.exr"
 compare = { metric = "psnr" }
+visibility = "after_published"
 "#,
         );
         let suite = Suite::from_manifest(&manifest).unwrap();
@@ -496,9 +503,10 @@ compare = { metric = "psnr" }
         let [balls, room] = &suite.graded[..] else { panic!("{:?}", suite.graded) };
         assert_eq!((balls.name.as_str(), balls.image.as_str()), ("spd-balls-1", "{student}/balls.png"));
         assert_eq!(balls.reference, Reference::Scene("spd:balls:1".into()));
-        assert_eq!(balls.scoring, Scoring { points: 10.0, partial: vec![crate::scoring::Band { limit: 0.1, points: 5.0 }] });
+        assert_eq!(balls.scoring, Scoring { points: 10.0, partial: vec![crate::scoring::Band { limit: 0.1, max_bad_fraction: None, points: 5.0 }] });
         assert_eq!(room.reference, Reference::File(dir.path().join("refs/room.exr")));
         assert_eq!((room.criteria.metric, room.scoring.points), (Metric::Psnr, crate::scoring::DEFAULT_POINTS));
+        assert_eq!((balls.visibility, room.visibility), (None, Some(Visibility::AfterPublished)));
         let chosen: Vec<&str> = suite.select_graded(&["room".into()]).unwrap().iter().map(|c| c.name.as_str()).collect();
         assert_eq!(chosen, ["room"]);
     }
@@ -543,7 +551,9 @@ compare = { metric = "psnr" }
         let suite = Suite::from_manifest(&write(dir.path(), "course.toml", text)).unwrap_or_else(|e| panic!("{e}"));
         let graded: Vec<(&str, f64)> = suite.graded.iter().map(|c| (c.name.as_str(), c.scoring.points)).collect();
         assert_eq!(graded, [("balls", 10.0), ("room", 5.0)]);
-        assert_eq!(suite.graded[0].scoring.partial.len(), 1);
+        let bands: Vec<Option<f64>> = suite.graded[0].scoring.partial.iter().map(|b| b.max_bad_fraction).collect();
+        assert!(matches!(bands[..], [Some(_), Some(_), None]), "{bands:?}");
+        assert_eq!(suite.graded[1].visibility, Some(Visibility::AfterDueDate));
     }
 
     #[test]

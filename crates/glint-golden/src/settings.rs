@@ -32,6 +32,12 @@ pub struct RenderSettings {
     pub exposure: Option<Checked<PositiveFinite>>,
     pub tone_map: Option<ToneMapName>,
     pub nff_angle: Option<NffAngleName>,
+    /// Trace shadow rays (default: the scene's setting).
+    pub shadows: Option<bool>,
+    /// Trace reflected rays (default: the scene's setting).
+    pub reflection: Option<bool>,
+    /// Trace refracted rays (default: the scene's setting).
+    pub refraction: Option<bool>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
@@ -70,6 +76,29 @@ pub enum ToneMapName {
 pub enum NffAngleName {
     Centers,
     Edges,
+}
+
+/// When Gradescope shows a graded case's test to the student, its
+/// `visibility` in results.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Visibility {
+    Visible,
+    Hidden,
+    AfterDueDate,
+    AfterPublished,
+}
+
+impl Visibility {
+    /// The name as a manifest and Gradescope write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Visibility::Visible => "visible",
+            Visibility::Hidden => "hidden",
+            Visibility::AfterDueDate => "after_due_date",
+            Visibility::AfterPublished => "after_published",
+        }
+    }
 }
 
 #[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
@@ -114,6 +143,9 @@ impl RenderSettings {
             exposure: over.exposure.or(self.exposure),
             tone_map: over.tone_map.or(self.tone_map),
             nff_angle: over.nff_angle.or(self.nff_angle),
+            shadows: over.shadows.or(self.shadows),
+            reflection: over.reflection.or(self.reflection),
+            refraction: over.refraction.or(self.refraction),
         }
     }
 }
@@ -334,5 +366,19 @@ mod tests {
             let e = toml::from_str::<CompareSettings>(text).unwrap_err().to_string();
             assert!(e.contains(needle), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn visibilities_read_back_as_gradescope_names_them() {
+        #[derive(Debug, serde::Deserialize)]
+        struct Case {
+            visibility: Visibility,
+        }
+        for visibility in [Visibility::Visible, Visibility::Hidden, Visibility::AfterDueDate, Visibility::AfterPublished] {
+            let read: Case = toml::from_str(&format!("visibility = \"{}\"", visibility.name())).unwrap();
+            assert_eq!(read.visibility, visibility);
+        }
+        let e = toml::from_str::<Case>("visibility = \"secret\"").unwrap_err().to_string();
+        assert!(e.contains("unknown variant `secret`"), "{e}");
     }
 }

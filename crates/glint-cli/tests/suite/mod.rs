@@ -16,12 +16,12 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// Chromium as the environment runs it: headless, no sandbox, no GPU, no
-/// network services, a fresh profile.
+/// Chromium (or Google Chrome: `.ci/chromium` picks) as the environment runs
+/// it: headless, no sandbox, no GPU, no network services, a fresh profile.
 pub fn chromium(args: &[&str]) -> Output {
     let profile = tempfile::tempdir().unwrap();
     let user_data = format!("--user-data-dir={}", profile.path().display());
-    Command::new("chromium")
+    Command::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../.ci/chromium"))
         .args([
             "--headless",
             "--no-sandbox",
@@ -34,7 +34,7 @@ pub fn chromium(args: &[&str]) -> Output {
         ])
         .args(args)
         .output()
-        .expect("chromium runs (bash .ci/setup installs it)")
+        .expect("Chromium or Google Chrome runs (bash .ci/setup --tests installs Chromium)")
 }
 
 pub fn arg(path: &Path) -> &str {

@@ -13,7 +13,7 @@ const log = (...parts) => console.log(new Date().toISOString().slice(11, 23), ..
 
 async function main() {
   const browser = await chromium.launch({
-    executablePath: "/usr/bin/chromium",
+    executablePath: require("child_process").execFileSync(require("path").join(__dirname, "../../../../.ci/chromium"), ["--which"]).toString().trim(),
     headless: true,
     // ANGLE on Vulkan composites the WebGPU canvas: with the default GL
     // compositor, presenting to it breaks the device's read-backs here.
