@@ -1,19 +1,27 @@
-//! The device profile on CI's adapter, lavapipe: the renderer makes
-//! lavapipe's choices and a scene's kernels are tuned by them; the device is
-//! opened with WebGPU's default limits and raised to the adapter's only for a
-//! scene that needs it.
+//! The device profile on lavapipe, opened by name so that these tests pass on
+//! a machine with a GPU too: the renderer makes lavapipe's choices and a
+//! scene's kernels are tuned by them, or by the plain profile's where that
+//! is forced; the device is opened with WebGPU's default limits and raised to
+//! the adapter's only for a scene that needs it. And the boundary: only
+//! glint-gpu chooses a tuning or touches the driver's environment.
 
 mod support;
 
-use glint_gpu::shaders::SceneArrays;
-use glint_gpu::{Acceleration, GpuError, Tuning, PACKET_EYE_RAYS};
+use glint_gpu::shaders::{SceneArrays, ShaderSource};
+use glint_gpu::{Acceleration, Gpu, GpuError, ProfileName, Renderer, Tuning, PACKET_EYE_RAYS};
+
+fn lavapipe() -> &'static Gpu {
+    static GPU: std::sync::OnceLock<Gpu> = std::sync::OnceLock::new();
+    GPU.get_or_init(|| Gpu::named("llvmpipe").unwrap_or_else(|e| panic!("these tests need lavapipe (`bash .ci/setup`): {e}")))
+}
 
 #[test]
 fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
-    let gpu = support::gpu();
-    assert!(gpu.info().name.contains("llvmpipe"), "the tests run on lavapipe: {}", gpu.info().name);
-    let profile = *support::renderer().profile();
+    let gpu = lavapipe();
+    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded).unwrap();
+    let profile = *renderer.profile();
     assert_eq!(profile, gpu.profile());
+    assert_eq!((profile.name, profile.forced), (ProfileName::Lavapipe, false), "{profile:?}");
     let kernels = profile.kernels.expect("lavapipe's kernels are described");
     assert!(!kernels.quick && kernels.vector_bits.is_some(), "{kernels:?}");
     assert_eq!(profile.scene_arrays, SceneArrays::Buffers);
@@ -23,14 +31,27 @@ fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
     assert!(profile.describe().starts_with("lavapipe profile"), "{}", profile.describe());
 
     let scene = glint_scene::load(std::path::Path::new("spd:tetra:2")).unwrap();
-    let prepared = support::renderer().prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
-    let tuned = Tuning::LAVAPIPE;
-    assert_eq!(prepared.buffers.tuning, tuned);
+    let prepared = renderer.prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
+    assert_eq!(prepared.buffers.tuning(), Tuning::LAVAPIPE);
+}
+
+/// The plain profile forced on the test device tunes every scene's kernels
+/// as every GPU's: the suites' second renderer (tests/support).
+#[test]
+fn the_forced_plain_profile_tunes_kernels_as_every_gpus() {
+    let renderer = support::plain_renderer();
+    assert_eq!((renderer.profile().name, renderer.profile().forced), (ProfileName::Plain, true));
+    for name in ["spd:tetra:2", "spd:balls:1"] {
+        let scene = glint_scene::load(std::path::Path::new(name)).unwrap();
+        let prepared = renderer.prepare(&scene, 32, 32, Acceleration::Bvh).unwrap();
+        assert_eq!(prepared.buffers.tuning(), Tuning::PLAIN, "{name}");
+        assert!(prepared.eye_tiles_build.is_none(), "{name}: the plain profile bins no eye tiles");
+    }
 }
 
 #[test]
 fn devices_open_with_webgpus_default_limits_and_raise_one_a_scene_needs() {
-    let gpu = support::gpu();
+    let gpu = lavapipe();
     let (limits, defaults, offered) = (gpu.device.limits(), wgpu::Limits::default(), gpu.adapter.limits());
     assert_eq!(limits.max_storage_buffers_per_shader_stage, defaults.max_storage_buffers_per_shader_stage);
     assert_eq!(limits.max_storage_buffer_binding_size, defaults.max_storage_buffer_binding_size);
@@ -50,14 +71,17 @@ fn devices_open_with_webgpus_default_limits_and_raise_one_a_scene_needs() {
 }
 
 /// The profile is the one owner of driver decisions: the front ends and the
-/// scene crate never name a driver or its environment.
+/// scene crate never name a driver, its environment or Mesa's shader cache,
+/// nor change the process environment, which only glint-gpu's lavapipe.rs
+/// does (only it calls `set_var`, an `unsafe` function).
 #[test]
 fn the_front_ends_and_the_scene_crate_name_no_driver() {
-    let words = ["lavapipe", "GALLIVM", "LP_NATIVE"];
+    let words = ["lavapipe", "llvmpipe", "MESA_", "GALLIVM_", "LP_", "set_var", "remove_var", "shader cache", "shader_cache"];
     let mut files = Vec::new();
-    for krate in ["glint-cli", "glint-viewer", "glint-scene"] {
+    for krate in ["glint-cli", "glint-viewer", "glint-web", "glint-scene"] {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crates").join(krate);
-        support::source_files(&dir, &["rs", "toml", "md"], &mut files);
+        support::source_files(&dir.join("src"), &["rs", "toml", "md"], &mut files);
+        files.push(dir.join("Cargo.toml"));
     }
     assert!(files.iter().any(|f| f.ends_with("glint-cli/src/main.rs")), "the walk found the front ends");
     let mut found = Vec::new();
@@ -70,4 +94,25 @@ fn the_front_ends_and_the_scene_crate_name_no_driver() {
         }
     }
     assert!(found.is_empty(), "driver decisions outside the device profile:\n{}", found.join("\n"));
+}
+
+/// Only tests set a tuning's choices: no crate but the workspace's tests
+/// enables glint-gpu's `variants` feature, without which a `Tuning`'s fields
+/// and a scene's tuning are private (glint-gpu's compile_fail doc-tests).
+#[test]
+fn no_front_end_enables_the_feature_that_sets_a_tuning() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for krate in std::fs::read_dir(root.join("crates")).unwrap() {
+        let manifest = krate.unwrap().path().join("Cargo.toml");
+        let text = std::fs::read_to_string(&manifest).unwrap_or_else(|e| panic!("{}: {e}", manifest.display()));
+        let table: toml::Table = text.parse().unwrap_or_else(|e| panic!("{}: {e}", manifest.display()));
+        for section in ["dependencies", "dev-dependencies", "build-dependencies"] {
+            let gpu = table.get(section).and_then(|deps| deps.get("glint-gpu"));
+            let features = gpu.and_then(|dep| dep.get("features")).and_then(|f| f.as_array()).cloned().unwrap_or_default();
+            assert!(!features.iter().any(|f| f.as_str() == Some("variants")), "{} enables `variants` in [{section}]", manifest.display());
+        }
+    }
+    let own: toml::Table = std::fs::read_to_string(root.join("Cargo.toml")).unwrap().parse().unwrap();
+    let features = &own["dev-dependencies"]["glint-gpu"]["features"];
+    assert_eq!(features.as_array().map(Vec::len), Some(1), "the workspace's tests enable `variants` alone: {features}");
 }

@@ -7,13 +7,19 @@
 //! before committing. On a failure the report in `target/golden-diff/`
 //! (index.html, with each failing case's golden, render and FLIP map) is named
 //! in the message.
+//!
+//! The goldens are rendered under the device's profile; every scene is
+//! rendered again under the plain profile too, smaller, to the same bits
+//! (`every_scene_renders_the_same_bits_under_the_plain_profile`).
 
 mod support;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use glint_encoding::gpu_types::Filter;
 use glint_golden::{Bless, RunOptions, Suite, Summary};
+use glint_gpu::{Acceleration, RenderOptions};
 
 /// Goldens must stay small in the repository.
 const MAX_GOLDEN_BYTES: u64 = 30_000;
@@ -51,5 +57,23 @@ fn every_scene_matches_its_golden_image() {
             report.display(),
             failures.join("\n")
         );
+    }
+}
+
+/// The plain profile, what every GPU runs, renders each golden scene as the
+/// device's profile does, bit for bit: with the suite's samples, filter and
+/// seed, at 48×36 (`support::PLAIN_PIXELS`), where lavapipe takes about 5×
+/// as long under it as under its own.
+#[test]
+fn every_scene_renders_the_same_bits_under_the_plain_profile() {
+    let suite = Suite::load(&root().join("tests/golden/manifest.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(suite.cases.len() >= 2, "no scenes found");
+    for case in &suite.cases {
+        let mut scene = glint_scene::load(&case.scene).unwrap_or_else(|e| panic!("{}: {e}", case.scene.display()));
+        (scene.width, scene.height) = (48, 36);
+        let options = RenderOptions { spp: 4, filter: Filter::Tent, seed: 1, ..RenderOptions::default() };
+        // Renders under both profiles and compares them.
+        let (image, stats) = support::render_options(&scene, Acceleration::Bvh, options);
+        assert!(stats.eye_hit > 0 && image.linear.len() == 48 * 36, "{}: nothing rendered", case.name);
     }
 }

@@ -9,9 +9,7 @@ mod support;
 use glam::{DVec3, Vec3};
 use glint_encoding::gpu_types::{NO_RAY, RAY_EYE, RAY_REFRACT, RAY_SHADOW};
 use glint_encoding::observer::{object_bounds, Ink, Observer, Overlay, OverlayOptions, ProbedPixel, RayId};
-use glint_gpu::probe::{Prober, RayTree};
-use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, RenderOptions};
+use glint_gpu::probe::RayTree;
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, Projection, Scene, MAX_DEPTH_LIMIT};
 
@@ -57,11 +55,9 @@ type = "polygon"
 vertices = [[-5, -0.2, -5], [-5, -0.2, 5], [5, -0.2, 5], [5, -0.2, -5]]
 "#;
 
+/// Probed under the device's profile and the plain profile alike.
 fn probe(scene: &Scene, x: u32, y: u32) -> RayTree {
-    let renderer = support::renderer();
-    let prober = Prober::new(renderer, &ShaderSource::Embedded).unwrap_or_else(|e| panic!("{e}"));
-    let prepared = renderer.prepare(scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
-    prober.probe(renderer, &prepared.buffers, x, y, &RenderOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    support::Probing::new(scene).probe(x, y)
 }
 
 fn overlay_of(scene: &Scene, pixel: (u32, u32), tree: &RayTree) -> (CameraFrame, Overlay) {

@@ -21,12 +21,11 @@ fn assert_packets_trace_as_single_rays(scene: &Scene, what: &str) -> u64 {
     (scene.width, scene.height) = SIZE;
     let renderer = support::renderer();
     let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
-    assert!(prepared.buffers.tuning.eye_tiles, "{what}: binned into eye tiles on lavapipe");
+    assert!(prepared.buffers.tuning().eye_tiles(), "{what}: binned into eye tiles on lavapipe");
     let mut misses = 0;
     for view in View::ALL.into_iter().filter(|v| v.is_primary_only()) {
         let mut render = |packets, eye_tiles| {
-            prepared.buffers.tuning.packets = packets;
-            prepared.buffers.tuning.eye_tiles = eye_tiles;
+            prepared.buffers.retune(prepared.buffers.tuning().with_packets(packets).with_eye_tiles(eye_tiles));
             let options = RenderOptions { view, ..Default::default() };
             renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
         };
@@ -132,24 +131,24 @@ fn eye_tiles_follow_the_camera() {
     let options = RenderOptions { view: View::Depth, ..Default::default() };
     let depth = |buffers: &glint_gpu::SceneBuffers| renderer.render(buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}")).0;
     let fresh = renderer.prepare(&moved, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap();
-    assert!(fresh.buffers.tuning.eye_tiles);
+    assert!(fresh.buffers.tuning().eye_tiles());
     let want = depth(&fresh.buffers);
 
     let mut prepared = renderer.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap();
     let uniforms = glint_encoding::gpu_types::scene_uniforms(&moved, SIZE.0, SIZE.1, prepared.lights, prepared.buffers.bvh_root());
     renderer.write_uniforms(&mut prepared.buffers, &uniforms).unwrap();
-    assert!(!prepared.buffers.tuning.eye_tiles, "the tiles of the old view are not walked");
+    assert!(!prepared.buffers.tuning().eye_tiles(), "the tiles of the old view are not walked");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera moved in place");
     renderer.pose(&mut prepared, &moved).unwrap();
-    assert!(prepared.buffers.tuning.eye_tiles, "posed: binned for the new view");
+    assert!(prepared.buffers.tuning().eye_tiles(), "posed: binned for the new view");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera posed");
 
     // Forgotten, as `glint bench` forgets it to time a camera move.
     prepared.buffers.forget_view();
-    assert!(!prepared.buffers.tuning.eye_tiles, "the forgotten view's tiles are not walked");
+    assert!(!prepared.buffers.tuning().eye_tiles(), "the forgotten view's tiles are not walked");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "view forgotten");
     renderer.pose(&mut prepared, &moved).unwrap();
-    assert!(prepared.buffers.tuning.eye_tiles, "posed again: binned again");
+    assert!(prepared.buffers.tuning().eye_tiles(), "posed again: binned again");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "view forgotten and posed");
     let unmoved = depth(&renderer.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap().buffers);
     assert_ne!(unmoved.linear, want.linear, "the camera moved");

@@ -2,40 +2,27 @@
 //! image. Its contributions add up to the rendered pixel, its tree is the one
 //! a hand count gives, and it is the CPU reference's tree, ray by ray and term
 //! by term. Also the teaching views that show the tree's depth and size per pixel.
+//! Every probe is taken under the device's profile and the plain profile
+//! alike (`support::Probing`).
 
 mod support;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 use std::path::Path;
-use std::sync::OnceLock;
 
 use glam::DVec3;
 use glint_encoding::gpu_types::{
     ProbeRay, View, MISS, NO_RAY, PROBE_BACKFACE, PROBE_BLOCKED, PROBE_SHADOW_TRACED, PROBE_TOTAL_INTERNAL_REFLECTION, RAY_EYE,
     RAY_REFLECT, RAY_REFRACT, RAY_SHADOW,
 };
-use glint_gpu::probe::{Prober, RayTree};
-use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Prepared, RenderOptions, SceneBuffers};
+use glint_gpu::probe::RayTree;
+use glint_gpu::{Acceleration, RenderOptions};
 use glint_reference::{RayKind, RefRay, RefTree, ShadowRay, Tracer};
 use glint_scene::Scene;
 
-fn prober() -> &'static Prober {
-    static PROBER: OnceLock<Prober> = OnceLock::new();
-    PROBER.get_or_init(|| Prober::new(support::renderer(), &ShaderSource::Embedded).unwrap_or_else(|e| panic!("{e}")))
-}
-
 fn probe(scene: &Scene, x: u32, y: u32) -> RayTree {
-    probe_in(&prepare(scene).buffers, x, y)
-}
-
-fn prepare(scene: &Scene) -> Prepared {
-    support::renderer().prepare(scene, scene.width, scene.height, Acceleration::Bvh).unwrap()
-}
-
-fn probe_in(buffers: &SceneBuffers, x: u32, y: u32) -> RayTree {
-    prober().probe(support::renderer(), buffers, x, y, &RenderOptions::default()).unwrap()
+    support::Probing::new(scene).probe(x, y)
 }
 
 fn sum_of_contributions(scene: &Scene, tree: &RayTree) -> [f32; 3] {
@@ -466,7 +453,7 @@ impl Tally {
 /// tree branches, and compares each tree with the reference; a difference is
 /// allowed only where the reference shows a near tie.
 fn compare_trees(scene: &Scene, label: &str, count: usize, tally: &mut Tally) {
-    let prepared = prepare(scene);
+    let probing = support::Probing::new(scene);
     let tracer = Tracer::new(scene);
     let (w, h) = (scene.width, scene.height);
     let all: Vec<(u32, u32)> = (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).collect();
@@ -478,7 +465,7 @@ fn compare_trees(scene: &Scene, label: &str, count: usize, tally: &mut Tally) {
     let seed = tally.pixels as u64;
     let picked: BTreeSet<(u32, u32)> = pick(&all, seed, count / 2).into_iter().chain(pick(&branching, !seed, count - count / 2)).collect();
     for (x, y) in picked {
-        let gpu = probe_in(&prepared.buffers, x, y);
+        let gpu = probing.probe(x, y);
         assert!(!gpu.truncated, "{label} ({x}, {y})");
         let reference = tracer.ray_tree(scene.width, scene.height, f64::from(x) + 0.5, f64::from(y) + 0.5);
         let differences = PixelComparison::run(scene, &tracer, &gpu, &reference);

@@ -33,12 +33,12 @@ fn assert_one_walk_traces_as_the_plain_tree(plain: &Renderer, scene: &Scene, wha
     let walked = support::renderer();
     let prepare = |r: &Renderer| r.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap_or_else(|e| panic!("{what}: {e}"));
     let (mut prepared, plain_prepared) = (prepare(walked), prepare(plain));
-    assert!(prepared.buffers.tuning.one_walk_tree && !plain_prepared.buffers.tuning.one_walk_tree, "{what}: the profiles' trees");
+    assert!(prepared.buffers.tuning().one_walk_tree() && !plain_prepared.buffers.tuning().one_walk_tree(), "{what}: the profiles' trees");
     let mut secondary = [0; 2];
     for view in View::ALL {
         let options = RenderOptions { view, spp: 2, seed: 7, view_scale: prepared.view_scale(view), ..Default::default() };
         let mut render = |one_walk_tree| {
-            prepared.buffers.tuning.one_walk_tree = one_walk_tree;
+            prepared.buffers.retune(prepared.buffers.tuning().with_one_walk_tree(one_walk_tree));
             walked.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{what}: {e}"))
         };
         let ((one_walk, one_walk_stats), (recursive, recursive_stats)) = (render(true), render(false));
@@ -47,7 +47,7 @@ fn assert_one_walk_traces_as_the_plain_tree(plain: &Renderer, scene: &Scene, wha
         assert_eq!(recursive_stats, one_walk_stats, "{case}");
         secondary = [secondary[0] + recursive_stats.reflect, secondary[1] + recursive_stats.refract];
     }
-    prepared.buffers.tuning.one_walk_tree = true;
+    prepared.buffers.retune(prepared.buffers.tuning().with_one_walk_tree(true));
     let (walked_prober, plain_prober) = (Prober::new(walked, &ShaderSource::Embedded).unwrap(), Prober::new(plain, &ShaderSource::Embedded).unwrap());
     for (x, y) in [(SIZE.0 / 2, SIZE.1 / 2), (SIZE.0 / 3, SIZE.1 * 2 / 3), (SIZE.0 * 3 / 4, SIZE.1 / 4), (0, SIZE.1 - 1)] {
         let options = RenderOptions::default();

@@ -35,7 +35,7 @@ fn assert_textures_trace_as_buffers(buffers: &Renderer, textures: &Renderer, sce
         for packets in [false, true] {
             let options = RenderOptions { view, ..Default::default() };
             let render = |renderer: &Renderer, prepared: &mut glint_gpu::Prepared| {
-                prepared.buffers.tuning.packets = packets;
+                prepared.buffers.retune(prepared.buffers.tuning().with_packets(packets));
                 renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
             };
             let (a, a_stats) = render(buffers, &mut from_buffers);
@@ -79,12 +79,11 @@ fn a_tree_in_uniform_buffers_traces_as_in_the_other_arrays() {
             let mut scene = scene.clone();
             (scene.width, scene.height) = (33, 25);
             let mut prepared = renderer.prepare(&scene, scene.width, scene.height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
-            assert!(prepared.buffers.tuning.uniform_tree, "{name}: {} records fit", prepared.bvh_nodes);
+            assert!(prepared.buffers.tuning().uniform_tree(), "{name}: {} records fit", prepared.bvh_nodes);
             for view in View::ALL {
                 for packets in [false, true] {
                     let mut render = |uniform_tree| {
-                        let tuning = &mut prepared.buffers.tuning;
-                        (tuning.packets, tuning.uniform_tree) = (packets, uniform_tree);
+                        prepared.buffers.retune(prepared.buffers.tuning().with_packets(packets).with_uniform_tree(uniform_tree));
                         let options = RenderOptions { view, ..Default::default() };
                         renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
                     };
@@ -99,5 +98,5 @@ fn a_tree_in_uniform_buffers_traces_as_in_the_other_arrays() {
     let large = glint_scene::load(std::path::Path::new("spd:tetra:7")).unwrap_or_else(|e| panic!("{e}"));
     let prepared = renderer(SceneArrays::Buffers).prepare(&large, 16, 16, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
     assert!(prepared.bvh_nodes > UNIFORM_TREE_RECORDS as usize, "{} records", prepared.bvh_nodes);
-    assert!(!prepared.buffers.tuning.uniform_tree);
+    assert!(!prepared.buffers.tuning().uniform_tree());
 }

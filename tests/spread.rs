@@ -178,8 +178,8 @@ fn row_order_traces_what_spread_order_traces() {
             for packets in [false, true] {
                 let options = glint_gpu::RenderOptions { view, spp: 2, ..Default::default() };
                 let mut render = |spread, workgroups| {
-                    let tuning = &mut prepared.buffers.tuning;
-                    (tuning.packets, tuning.eye_tiles, tuning.spread, tuning.workgroups) = (packets, false, spread, workgroups);
+                    let tuning = prepared.buffers.tuning().with_packets(packets).with_eye_tiles(false).with_spread(spread).with_workgroups(workgroups);
+                    prepared.buffers.retune(tuning);
                     renderer.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"))
                 };
                 let (spread, spread_stats) = render(true, WorkgroupSizes::LAVAPIPE);

@@ -114,7 +114,7 @@ fn the_dump_writes_each_kernel_variant_once_with_a_manifest() {
     for kernel in Kernel::ALL {
         assert!(variants.iter().any(|v| v.kernel == kernel && v.tuning == Tuning::PLAIN.for_kernel(kernel)), "{kernel:?} has no plain variant");
     }
-    assert!(variants.iter().any(|v| v.tuning.eye_tiles), "no kernel walks eye tiles");
+    assert!(variants.iter().any(|v| v.tuning.eye_tiles()), "no kernel walks eye tiles");
     let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("kernels").join(kernel_dump::DUMP_MANIFEST)).unwrap()).unwrap();
     assert_eq!(manifest.as_array().unwrap().len(), variants.len());
 }

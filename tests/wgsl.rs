@@ -49,7 +49,7 @@ fn the_plain_tuning_composes_no_fast_file() {
 /// compiled per scene.
 #[test]
 fn every_specialisation_validates() {
-    let lavapipe = Tuning { eye_tiles: false, ..Tuning::LAVAPIPE };
+    let lavapipe = Tuning::LAVAPIPE.with_eye_tiles(false);
     for kernel in Kernel::ALL {
         let composed = ShaderSource::Embedded.compose(kernel, Specialization::ALL, Tuning::PLAIN).unwrap();
         let intersects = composed.files.iter().any(|(name, ..)| name == "lib/primitive.wgsl");
@@ -72,7 +72,7 @@ fn every_specialisation_validates() {
             ..Specialization::ALL
         };
         for specialization in kinds.chain(views).chain([plain]) {
-            for tuning in [Tuning::PLAIN, lavapipe, Tuning { eye_tiles: true, ..lavapipe }] {
+            for tuning in [Tuning::PLAIN, lavapipe, lavapipe.with_eye_tiles(true)] {
                 if let Err(e) = ShaderSource::Embedded.compose(kernel, specialization, tuning.for_kernel(kernel)).unwrap().validate() {
                     panic!("{kernel:?} for {specialization}, tuned {}: {e}", tuning.name());
                 }
@@ -87,7 +87,7 @@ fn every_specialisation_validates() {
 #[test]
 fn workgroup_sizes_are_the_hosts() {
     for workgroups in [WorkgroupSizes::PLAIN, WorkgroupSizes::LAVAPIPE] {
-        let tuning = Tuning { workgroups, ..Tuning::PLAIN };
+        let tuning = Tuning::PLAIN.with_workgroups(workgroups);
         for kernel in [Kernel::Trace, Kernel::Primary, Kernel::Diffuse] {
             let module = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().validate().unwrap();
             let entry = module.entry_points.iter().find(|e| e.name == kernel.entry_point()).unwrap();
@@ -138,7 +138,7 @@ fn call_sites(module: &naga::Module, name: &str) -> usize {
 fn the_ray_tree_walks_the_bvh_through_one_call() {
     for kernel in [Kernel::Trace, Kernel::Probe] {
         for (one_walk_tree, walks) in [(true, 1), (false, 2)] {
-            let tuning = Tuning { one_walk_tree, ..Tuning::PLAIN };
+            let tuning = Tuning::PLAIN.with_one_walk_tree(one_walk_tree);
             let module = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().validate().unwrap();
             assert_eq!(call_sites(&module, "traverse"), walks, "{kernel:?}, one walk {one_walk_tree}");
             assert_eq!(call_sites(&module, "intersect_prim"), 1, "{kernel:?}");

@@ -5,10 +5,8 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 use glint_encoding::gpu_types::View;
-use glint_encoding::specialization::Specialization;
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer};
-use glint_gpu::{DeviceProfile, Tuning};
+use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer, Workload};
 
 use crate::{exit, Failure};
 
@@ -39,8 +37,7 @@ pub struct BenchArgs {
     /// Measure what a first render pays instead: each kernel's pipeline
     /// creation for each scene's primitive kinds, as a one-off render of that
     /// size compiles it (the driver's compile), and the first frame against a
-    /// warm one. Run with
-    /// MESA_SHADER_CACHE_DISABLE=true to see what a fresh machine pays.
+    /// warm one; the header says how to measure what a fresh machine pays.
     #[arg(long)]
     cold: bool,
 }
@@ -89,15 +86,13 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     let scenes = if args.scenes.is_empty() { default_scenes() } else { args.scenes.clone() };
     // Cold, the kernels a first render of each scene compiles; warm, those of
     // a long render, whose time the warm frames stand for.
-    let (samples, rendered_before) =
-        if args.cold { (u64::from(args.width) * u64::from(args.height), false) } else { (glint_gpu::LONG_RENDER_MIN_SAMPLES, true) };
-    // SAFETY: no thread has been started yet.
-    unsafe { glint_gpu::compile_for_samples(samples, rendered_before) };
-    let gpu = Gpu::new()?;
+    let pixels = u64::from(args.width) * u64::from(args.height);
+    let workload = if args.cold { Workload::render(pixels, pixels, false) } else { Workload::REPEATED_FRAMES };
+    let gpu = Gpu::for_workload(&workload)?;
     if args.cold {
-        return crate::bench_cold::run(&gpu, &scenes, args.width, args.height, args.json);
+        return crate::bench_cold::run(&gpu, workload, &scenes, args.width, args.height, args.json);
     }
-    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+    let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?.plan(workload);
     let acceleration = match args.accel {
         AccelArg::Bvh => Acceleration::Bvh,
         AccelArg::Brute => Acceleration::BruteForce,
@@ -122,7 +117,7 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
 fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
     let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
     let mut prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
-    let scene_kernels = (prepared.buffers.specialization, prepared.buffers.tuning);
+    let scene_kernels = prepared.buffers.specialization;
     // Device time per frame: tracing only, no resolve or read-back. When the
     // camera moves, each frame follows a view's host work as in the viewer:
     // the camera and lights written, the eye tiles binned; the frame's
@@ -135,12 +130,16 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         while times.len() < args.frames as usize {
             let start = Instant::now();
             if camera_moves {
-                (prepared.buffers.specialization, prepared.buffers.tuning) = scene_kernels;
+                prepared.buffers.specialization = scene_kernels;
                 prepared.buffers.forget_view();
                 renderer.pose(&mut prepared, &scene)?;
             }
             let view_time = start.elapsed();
-            (prepared.buffers.specialization, prepared.buffers.tuning) = timed_kernels(scene_kernels, view, renderer.profile());
+            // The kernels `glint render` compiles for a long render of that
+            // view alone: a kernel for every view would time the other views'
+            // code too (in the depth view, each hit loaded the whole primitive
+            // for the views that shade it).
+            prepared.buffers.specialization = scene_kernels.for_views(&[view]);
             stats = renderer.trace_frame(&prepared.buffers, &options, &mut |_, _| {})?;
             // The first frame compiles; frames that start within the warm-up after it are not timed.
             match warm_from {
@@ -174,15 +173,6 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         stats,
         nodes_per_primary_ray,
     })
-}
-
-/// The kernels a frame of `view` is timed with: those `glint render` compiles
-/// for a long render of that view alone (packets where `profile` traces them).
-/// A kernel for every view would time the other views' code too: in the depth
-/// view, each hit loaded the whole primitive for the views that shade it.
-fn timed_kernels(scene_kernels: (Specialization, Tuning), view: View, profile: &DeviceProfile) -> (Specialization, Tuning) {
-    let (specialization, tuning) = scene_kernels;
-    (specialization.for_views(&[view]), Tuning { packets: profile.packets_for(u64::MAX), ..tuning })
 }
 
 fn parse_seconds(text: &str) -> Result<f64, String> {
@@ -255,34 +245,6 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
 
 #[cfg(test)]
 mod tests {
-    use glint_encoding::gpu_types::View;
-    use glint_encoding::specialization::Specialization;
-    use glint_gpu::shaders::SceneArrays;
-    use glint_gpu::{DeviceProfile, Tuning, WorkgroupSizes, PACKET_EYE_RAYS};
-
-    #[test]
-    fn each_view_is_timed_with_the_kernel_a_long_render_of_it_alone_compiles() {
-        let profile = |packets| DeviceProfile {
-            kernels: None,
-            scene_arrays: SceneArrays::Buffers,
-            packets,
-            packet_eye_rays: PACKET_EYE_RAYS,
-            uniform_tree: false,
-            eye_tiles: false,
-            resolves_on_host: false,
-            spread: false,
-            one_walk_tree: false,
-            workgroups: WorkgroupSizes::PLAIN,
-        };
-        for view in [View::Depth, View::Shaded] {
-            for packets in [false, true] {
-                let (specialization, tuning) = super::timed_kernels((Specialization::ALL, Tuning::PLAIN), view, &profile(packets));
-                assert_eq!(specialization.view, Some(view));
-                assert_eq!(tuning.packets, packets, "{view:?} is timed with other packets than a long render traces");
-            }
-        }
-    }
-
     #[test]
     fn the_default_scenes_are_generated_or_in_the_repository() {
         let scenes = super::default_scenes();

@@ -8,36 +8,34 @@ use std::time::{Duration, Instant};
 
 use glint_encoding::gpu_types::View;
 use glint_gpu::shaders::{Kernel, ShaderSource};
-use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer};
+use glint_gpu::{Acceleration, Gpu, RenderOptions, Renderer, Workload};
 
 use crate::{exit, Failure};
 
-pub fn run(gpu: &Gpu, scenes: &[PathBuf], width: u32, height: u32, json: bool) -> Result<(), Failure> {
+/// Measures each of `scenes` on `gpu`, readied for `workload`: a first
+/// render of that size.
+pub fn run(gpu: &Gpu, workload: Workload, scenes: &[PathBuf], width: u32, height: u32, json: bool) -> Result<(), Failure> {
     if !json {
-        let cache = match glint_gpu::shader_cache_disabled() {
-            true => "Mesa's shader cache disabled",
-            false => "Mesa's shader cache enabled: set MESA_SHADER_CACHE_DISABLE=true for a fresh machine's times",
-        };
+        let note = gpu.cold_start_note().map_or(String::new(), |note| format!(", {note}"));
         eprintln!(
-            "{} — {width}x{height}, {}, {cache}; a kernel's compile = its pipeline's creation + its first run − its second",
+            "{} — {width}x{height}, {}{note}; a kernel's compile = its pipeline's creation + its first run − its second",
             gpu.info().name,
             gpu.profile().describe()
         );
         println!("{:<22} {:<44} {:>17} {:>19} {:>19}", "scene", "kinds", "trace compile ms", "primary compile ms", "resolve compile ms");
     }
     for path in scenes {
-        measure(gpu, path, width, height, json)?;
+        measure(gpu, workload, path, width, height, json)?;
     }
     Ok(())
 }
 
-fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Result<(), Failure> {
+fn measure(gpu: &Gpu, workload: Workload, path: &Path, width: u32, height: u32, json: bool) -> Result<(), Failure> {
     let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
-    // A renderer of its own, so no kernel compiled for an earlier scene is reused.
-    let renderer = &Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
-    let mut prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
-    // The kernels a one-off render of this size compiles (`glint render`).
-    prepared.buffers.tuning.packets = renderer.profile().packets_for(u64::from(width) * u64::from(height));
+    // A renderer of its own, so no kernel compiled for an earlier scene is
+    // reused; its kernels those a one-off render of this size compiles (`glint render`).
+    let renderer = &Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?.plan(workload);
+    let prepared = renderer.prepare(&scene, width, height, Acceleration::Bvh)?;
     let buffers = &prepared.buffers;
     // Software rasterisers compile a pipeline when it first runs, not when it is
     // created: its compile is the creation and the first run's excess over the second.
@@ -71,7 +69,7 @@ fn measure(gpu: &Gpu, path: &Path, width: u32, height: u32, json: bool) -> Resul
         })
         .transpose()?;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
-    let kinds = format!("{}, {}", buffers.specialization, buffers.tuning);
+    let kinds = format!("{}, {}", buffers.specialization, buffers.tuning());
     if json {
         let value = serde_json::json!({
             "scene": path.display().to_string(),

@@ -99,6 +99,8 @@ impl From<glint_gpu::GpuError> for Failure {
         let code = match e {
             glint_gpu::GpuError::Output(_) => exit::OUTPUT,
             glint_gpu::GpuError::Invalid(_) => exit::INPUT,
+            // GLINT_PROFILE names no profile: a usage error.
+            glint_gpu::GpuError::Profile(_) => exit::USAGE,
             _ => exit::GPU,
         };
         Failure::new(code, e)
@@ -129,8 +131,6 @@ fn main() -> ExitCode {
             return ExitCode::from(exit::USAGE);
         }
     };
-    // SAFETY: no thread has been started yet.
-    unsafe { glint_gpu::prepare_driver_environment() };
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),

@@ -10,7 +10,7 @@ use glint_gpu::shaders::ShaderSource;
 use glint_gpu::stitch::Placement;
 use glint_gpu::{
     Acceleration, Bits, CompiledKernels, Format, Gpu, GpuError, ImageSink, PpmForm, Prepared, RayStats, Region, RenderOptions, Renderer, Samples, StagedImage,
-    ToneMap,
+    ToneMap, Workload,
 };
 use glint_scene::MAX_DEPTH_LIMIT;
 use glint_scene::MAX_IMAGE_SIDE;
@@ -323,17 +323,15 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     }
     args.effects.apply(&mut scene.render);
 
-    let rendered_scenes = glint_gpu::RenderedScenes::of_shader_cache();
-    let rendered_before = rendered_scenes.contains(&args.scene);
-    // SAFETY: loading the scene and planning the frames started no thread.
-    unsafe { glint_gpu::compile_for_samples(samples(args, region, plan.frames.len() as u64), rendered_before) };
-    let (renderer, mut prepared) = prepare_on_device(&scene, (width, height), args)?;
+    let rendered_scenes = glint_gpu::RenderedScenes::on_this_machine();
+    let frames = plan.frames.len() as u64;
+    let eye_rays = u64::from(width) * u64::from(height) * frames;
+    let workload = Workload::render(eye_rays, samples(args, region, frames), rendered_scenes.contains(&args.scene));
+    let (renderer, mut prepared) = prepare_on_device(&scene, (width, height), args, workload)?;
 
     let view = args.view.view();
     let views: Vec<View> = std::iter::once(view).chain(args.aov.iter().map(|(aov, _)| aov.view())).collect();
-    let eye_rays = u64::from(width) * u64::from(height) * plan.frames.len() as u64;
     prepared.buffers.specialization = prepared.buffers.specialization.for_views(&views);
-    prepared.buffers.tuning.packets = renderer.profile().packets_for(eye_rays);
     let options = RenderOptions {
         view,
         spp: if view.is_primary_only() { 1 } else { args.spp },
@@ -485,13 +483,13 @@ fn samples(args: &RenderArgs, region: Region, frames: u64) -> u64 {
 /// A renderer and `scene` on its device for an image of `size`: a device of
 /// WebGPU's default limits, opened again with the adapter's own value of a
 /// limit the scene needs more of.
-fn prepare_on_device(scene: &glint_scene::Scene, size: (u32, u32), args: &RenderArgs) -> Result<(Renderer, Prepared), Failure> {
-    let mut gpu = Gpu::new()?;
+fn prepare_on_device(scene: &glint_scene::Scene, size: (u32, u32), args: &RenderArgs, workload: Workload) -> Result<(Renderer, Prepared), Failure> {
+    let mut gpu = Gpu::for_workload(&workload)?;
     if let Some(warning) = gpu.driver_warning() {
         eprintln!("glint: {warning}");
     }
     loop {
-        let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?;
+        let renderer = Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?.plan(workload);
         let renderer = match args.max_tile_pixels {
             Some(pixels) => renderer.with_max_tile_pixels(pixels),
             None => renderer,

@@ -54,9 +54,9 @@ pub fn run(args: ViewArgs) -> Result<(), Failure> {
         return Err(Failure::new(exit::NO_DISPLAY, message));
     }
     let record = args.scene.clone().unwrap_or_else(|| DEFAULT_RECORD.into());
-    let viewed_scenes = glint_gpu::RenderedScenes::of_shader_cache();
-    // SAFETY: no thread has been started yet.
-    unsafe { glint_gpu::compile_for_viewer(viewed_scenes.contains(&record)) };
+    let viewed_scenes = glint_gpu::RenderedScenes::on_this_machine();
+    // Before eframe makes the device.
+    glint_gpu::Workload::interactive(viewed_scenes.contains(&record)).prepare_driver()?;
     let scene = match args.scene {
         Some(path) => glint_viewer::Scene::File(path),
         None => glint_viewer::Scene::BuiltIn { name: DEFAULT_NAME.into(), text: DEFAULT_SCENE },

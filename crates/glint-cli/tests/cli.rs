@@ -60,9 +60,41 @@ fn info_names_the_adapter_and_limits() {
     }
 }
 
+/// `GLINT_PROFILE` forces a profile on the adapter, which `glint info` shows
+/// and which renders the same bytes; a value that names none is a usage
+/// error of one line, and no output is written.
+#[test]
+fn glint_profile_forces_a_profile_and_a_bad_one_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let with_profile = |profile: &str, args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_glint")).args(args).env(glint_gpu::ADAPTER_ENV, "llvmpipe").env(glint_gpu::PROFILE_ENV, profile).output().expect("glint runs")
+    };
+    let scene = scenes().join("gallery/primitives.toml");
+    let mut images = Vec::new();
+    for profile in ["plain", "lavapipe"] {
+        let o = with_profile(profile, &["info"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let stdout = String::from_utf8(o.stdout).unwrap();
+        let line = stdout.lines().find(|l| l.starts_with("profile:")).unwrap_or_else(|| panic!("no profile in:\n{stdout}"));
+        assert!(line.contains(&format!("{profile} profile, forced by GLINT_PROFILE={profile}")), "{line}");
+        let out = dir.path().join(format!("{profile}.exr"));
+        let o = with_profile(profile, &["render", scene.to_str().unwrap(), "--width", "48", "--height", "32", "--spp", "2", "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        images.push(std::fs::read(out).unwrap());
+    }
+    assert!(images[0] == images[1], "the plain profile's image is not the lavapipe profile's");
+    let out = dir.path().join("bad.png");
+    for args in [&["info"][..], &["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]] {
+        let o = with_profile("fast", args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o), "glint: GLINT_PROFILE=fast names no device profile: use plain or lavapipe\n", "{args:?}");
+    }
+    assert!(!out.exists(), "a render refused wrote its output");
+}
+
 /// The name of the shader cache glint gives the software adapter's kernels of `width` bits.
 fn cache_of(width: impl std::fmt::Display) -> String {
-    let dir = glint_gpu::shader_cache_dir(&width.to_string().into(), Some("/".into()), None).unwrap();
+    let dir = glint_gpu::lavapipe::shader_cache_dir(&width.to_string().into(), Some("/".into()), None).unwrap();
     dir.file_name().unwrap().to_string_lossy().into_owned()
 }
 
@@ -74,11 +106,11 @@ fn glint_at_width(width: Option<&str>, cache_home: &Path, args: &[&str]) -> Outp
         .args(args)
         .env(glint_gpu::ADAPTER_ENV, "llvmpipe")
         .env("XDG_CACHE_HOME", cache_home)
-        .env_remove(glint_gpu::SHADER_CACHE_ENV)
+        .env_remove(glint_gpu::lavapipe::SHADER_CACHE_ENV)
         .env_remove("MESA_SHADER_CACHE_DISABLE");
     match width {
-        Some(w) => command.env(glint_gpu::LAVAPIPE_WIDTH_ENV, w),
-        None => command.env_remove(glint_gpu::LAVAPIPE_WIDTH_ENV),
+        Some(w) => command.env(glint_gpu::lavapipe::LAVAPIPE_WIDTH_ENV, w),
+        None => command.env_remove(glint_gpu::lavapipe::LAVAPIPE_WIDTH_ENV),
     };
     command.output().expect("glint runs")
 }
@@ -96,7 +128,7 @@ fn the_software_adapter_gets_the_width_glint_asks_for_and_it_changes_no_pixel() 
         assert!(o.status.success(), "{}", stderr(&o));
         String::from_utf8(o.stdout).unwrap().lines().next().unwrap_or_default().to_string()
     };
-    let asked = format!("{} bits", glint_gpu::LAVAPIPE_WIDTH);
+    let asked = format!("{} bits", glint_gpu::lavapipe::LAVAPIPE_WIDTH);
     assert!(adapter(None).contains(&asked), "{}", adapter(None));
     assert!(adapter(Some("256")).contains("256 bits"), "{}", adapter(Some("256")));
 
@@ -114,7 +146,7 @@ fn the_software_adapter_gets_the_width_glint_asks_for_and_it_changes_no_pixel() 
     assert_eq!(caches, ["glint"], "Mesa's shared cache was used");
     let mut widths: Vec<_> = std::fs::read_dir(cache.join("glint")).unwrap().map(|e| e.unwrap().file_name()).collect();
     widths.sort();
-    assert_eq!(widths, [cache_of(glint_gpu::LAVAPIPE_WIDTH), cache_of(256)].map(std::ffi::OsString::from));
+    assert_eq!(widths, [cache_of(glint_gpu::lavapipe::LAVAPIPE_WIDTH), cache_of(256)].map(std::ffi::OsString::from));
 }
 
 #[test]
@@ -132,15 +164,15 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         command
             .args(args)
             .env(glint_gpu::ADAPTER_ENV, "llvmpipe")
-            .env_remove(glint_gpu::SHADER_CACHE_ENV)
-            .env_remove(glint_gpu::LAVAPIPE_WIDTH_ENV);
+            .env_remove(glint_gpu::lavapipe::SHADER_CACHE_ENV)
+            .env_remove(glint_gpu::lavapipe::LAVAPIPE_WIDTH_ENV);
         match cache_home {
             Some(home) => command.env("XDG_CACHE_HOME", dir.path().join(home)).env_remove("MESA_SHADER_CACHE_DISABLE"),
             None => command.env("MESA_SHADER_CACHE_DISABLE", "true"),
         };
         match perf {
-            Some(flags) => command.env(glint_gpu::LAVAPIPE_PERF_ENV, flags),
-            None => command.env_remove(glint_gpu::LAVAPIPE_PERF_ENV),
+            Some(flags) => command.env(glint_gpu::lavapipe::LAVAPIPE_PERF_ENV, flags),
+            None => command.env_remove(glint_gpu::lavapipe::LAVAPIPE_PERF_ENV),
         };
         let o = command.output().expect("glint runs");
         assert!(o.status.success(), "{}", stderr(&o));
@@ -148,7 +180,7 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         let bits = stats["vector_bits"].as_u64().expect("the software adapter reports its width");
         let quick = stats["quick_kernels"].as_bool().expect("the software adapter reports its kernels");
         let samples = size.parse::<u64>().unwrap().pow(2) * spp.parse::<u64>().unwrap();
-        let width = glint_gpu::width_for(samples, quick);
+        let width = glint_gpu::lavapipe::width_for(samples, quick);
         assert_eq!(bits.to_string(), width, "the width of {} kernels for {samples} samples", if quick { "quick" } else { "optimised" });
         (std::fs::read(out).unwrap(), quick, bits)
     };
@@ -164,17 +196,17 @@ fn first_small_renders_compile_quick_kernels_to_the_same_pixels() {
         names.sort();
         names
     };
-    let mut expected = vec![cache_of(glint_gpu::LAVAPIPE_WIDTH), cache_of(quick_bits)];
+    let mut expected = vec![cache_of(glint_gpu::lavapipe::LAVAPIPE_WIDTH), cache_of(quick_bits)];
     expected.dedup();
     assert_eq!(widths("a"), expected);
     assert!(render(None, None, "96", "1").1, "without a shader cache a scene rendered before compiled optimised kernels");
     assert!(!render(Some("b"), Some(""), "96", "1").1, "empty performance flags did not keep the optimised kernels");
     // Just over the limit in samples, not in pixels.
-    let side = (glint_gpu::QUICK_COMPILE_MAX_SAMPLES / 16).isqrt() + 1;
+    let side = (glint_gpu::lavapipe::QUICK_COMPILE_MAX_SAMPLES / 16).isqrt() + 1;
     assert!(!render(Some("c"), None, &side.to_string(), "16").1, "a render of {} samples compiled quick kernels", side * side * 16);
     // A long render: optimised kernels at the wide width (the render checks
     // the width), in that width's cache.
-    let spp = glint_gpu::LONG_RENDER_MIN_SAMPLES.div_ceil(48 * 48);
+    let spp = glint_gpu::lavapipe::LONG_RENDER_MIN_SAMPLES.div_ceil(48 * 48);
     let (_, was_quick, long_bits) = render(Some("d"), None, "48", &spp.to_string());
     assert!(!was_quick, "a long render compiled quick kernels");
     assert!(widths("d").contains(&cache_of(long_bits)), "no cache of the long render's width: {:?}", widths("d"));
@@ -188,7 +220,7 @@ fn bench_times_the_kernels_of_a_long_render() {
     let o = glint_at_width(None, dir.path(), &["bench", "spd:tetra:1", "--width", "16", "--height", "16", "--frames", "1", "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("--json prints JSON");
-    let long_render = glint_gpu::width_for(glint_gpu::LONG_RENDER_MIN_SAMPLES, false);
+    let long_render = glint_gpu::lavapipe::width_for(glint_gpu::lavapipe::LONG_RENDER_MIN_SAMPLES, false);
     assert_eq!(report["vector_bits"].to_string(), long_render, "{report}");
     // The primary frame counts the view's host work, which is also reported apart.
     let (primary, view) = (report["primary_ms"].as_f64().unwrap(), report["view_work_ms"].as_f64().unwrap());

@@ -213,16 +213,16 @@ fn a_scene_viewed_before_gets_optimised_kernels() {
         [
             (glint_gpu::ADAPTER_ENV, Some(OsStr::new("llvmpipe"))),
             ("XDG_CACHE_HOME", Some(cache.path().as_os_str())),
-            (glint_gpu::SHADER_CACHE_ENV, None),
+            (glint_gpu::lavapipe::SHADER_CACHE_ENV, None),
             ("MESA_SHADER_CACHE_DISABLE", cache_disabled.map(OsStr::new)),
-            (glint_gpu::LAVAPIPE_WIDTH_ENV, None),
-            (glint_gpu::LAVAPIPE_PERF_ENV, None),
+            (glint_gpu::lavapipe::LAVAPIPE_WIDTH_ENV, None),
+            (glint_gpu::lavapipe::LAVAPIPE_PERF_ENV, None),
         ]
     };
     let kernels = |cache_disabled| first_image_report(&first_image(&scene, &env(cache_disabled))).1;
-    let quick = format!("quick kernels, {} bits", glint_gpu::width_for(0, true));
+    let quick = format!("quick kernels, {} bits", glint_gpu::lavapipe::width_for(0, true));
     assert_eq!(kernels(None), quick, "the first viewing");
-    assert_eq!(kernels(None), format!("optimised kernels, {} bits", glint_gpu::LAVAPIPE_WIDTH), "the second viewing");
+    assert_eq!(kernels(None), format!("optimised kernels, {} bits", glint_gpu::lavapipe::LAVAPIPE_WIDTH), "the second viewing");
     assert_eq!(kernels(Some("true")), quick, "a viewing without a shader cache");
 }
 
@@ -248,12 +248,12 @@ fn kernels_cached_at_one_vector_width_are_not_loaded_at_another() {
     for width in [Some("256".as_ref()), None] {
         let env = [
             ("XDG_CACHE_HOME", Some(cache.path().as_os_str())),
-            (glint_gpu::SHADER_CACHE_ENV, None),
+            (glint_gpu::lavapipe::SHADER_CACHE_ENV, None),
             ("MESA_SHADER_CACHE_DISABLE", None),
-            (glint_gpu::LAVAPIPE_WIDTH_ENV, width),
+            (glint_gpu::lavapipe::LAVAPIPE_WIDTH_ENV, width),
             // Optimised kernels, which Glint compiles at its own width when
             // the environment chooses none (quick ones may be 256 bits too).
-            (glint_gpu::LAVAPIPE_PERF_ENV, Some("".as_ref())),
+            (glint_gpu::lavapipe::LAVAPIPE_PERF_ENV, Some("".as_ref())),
         ];
         let out = first_image(&scene, &env);
         assert!(out.status.success(), "at width {width:?}: {}: {}", out.status, String::from_utf8_lossy(&out.stderr));

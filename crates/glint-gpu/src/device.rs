@@ -1,5 +1,7 @@
 //! Adapter and device selection.
 
+use crate::profile::{DeviceProfile, ProfileName};
+use crate::workload::Workload;
 use crate::GpuError;
 
 /// Environment variable that pins the adapter: the first adapter whose name
@@ -38,27 +40,43 @@ pub struct Gpu {
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
+    profile: DeviceProfile,
 }
 
 impl Gpu {
-    /// Prefers a real GPU; `GLINT_ADAPTER` pins one by name.
+    /// Prefers a real GPU; `GLINT_ADAPTER` pins one by name. For work no
+    /// front end describes (see [`Gpu::for_workload`]).
     pub fn new() -> Result<Self, GpuError> {
-        pollster::block_on(Self::new_async())
+        Self::for_workload(&Workload::UNDESCRIBED)
     }
 
-    async fn new_async() -> Result<Self, GpuError> {
+    /// [`Gpu::new`], with the driver readied for `workload` if this is the
+    /// process's first device ([`Workload::prepare_driver`]).
+    pub fn for_workload(workload: &Workload) -> Result<Self, GpuError> {
+        workload.prepare_driver()?;
+        pollster::block_on(Self::new_async(std::env::var(ADAPTER_ENV).ok()))
+    }
+
+    /// The first adapter whose name contains `name` (case-insensitive),
+    /// whatever `GLINT_ADAPTER` says: for tests of one adapter's profile.
+    pub fn named(name: &str) -> Result<Self, GpuError> {
+        Workload::UNDESCRIBED.prepare_driver()?;
+        pollster::block_on(Self::new_async(Some(name.to_string())))
+    }
+
+    async fn new_async(wanted: Option<String>) -> Result<Self, GpuError> {
         let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         descriptor.backends = backends();
         let instance = wgpu::Instance::new(descriptor);
-        let adapter = Self::pick_adapter(&instance).await?;
+        let adapter = Self::pick_adapter(&instance, wanted).await?;
         Self::open(adapter).await
     }
 
-    async fn pick_adapter(instance: &wgpu::Instance) -> Result<wgpu::Adapter, GpuError> {
+    async fn pick_adapter(instance: &wgpu::Instance, wanted: Option<String>) -> Result<wgpu::Adapter, GpuError> {
         let mut adapters = instance.enumerate_adapters(wgpu::Backends::all()).await;
         // Only adapters that can run compute shaders qualify.
         adapters.retain(|a| a.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::COMPUTE_SHADERS));
-        if let Ok(wanted) = std::env::var(ADAPTER_ENV) {
+        if let Some(wanted) = wanted {
             let wanted_lc = wanted.to_lowercase();
             let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
             return adapters
@@ -87,7 +105,8 @@ impl Gpu {
     async fn open_with(adapter: wgpu::Adapter, limits: wgpu::Limits) -> Result<Self, GpuError> {
         let descriptor = wgpu::DeviceDescriptor { required_limits: limits, ..device_descriptor(&adapter, SceneLimits::Default) };
         let (device, queue) = adapter.request_device(&descriptor).await.map_err(|e| GpuError::Device(e.to_string()))?;
-        Ok(Self { adapter, device, queue })
+        let profile = DeviceProfile::of_device(&device)?;
+        Ok(Self { adapter, device, queue, profile })
     }
 
     /// When `error` is a scene's need beyond one of this device's limits
@@ -104,9 +123,16 @@ impl Gpu {
         self.adapter.get_info()
     }
 
-    /// Every device-dependent choice, made from this device.
-    pub fn profile(&self) -> crate::DeviceProfile {
-        crate::DeviceProfile::of_device(&self.device)
+    /// Every device-dependent choice, made from this device (or forced by
+    /// `GLINT_PROFILE`).
+    pub fn profile(&self) -> DeviceProfile {
+        self.profile
+    }
+
+    /// How far Mesa's shader cache makes a first compile's times those of a
+    /// fresh machine, for reports of them; `None` on other drivers.
+    pub fn cold_start_note(&self) -> Option<&'static str> {
+        crate::lavapipe::cold_start_note(&self.info())
     }
 
     /// A warning when the adapter's driver is known to give wrong pixels.
@@ -135,20 +161,17 @@ const SCENE_SIZED_LIMITS: [&str; 3] = ["max_storage_buffer_binding_size", "max_b
 /// too); `scene_limits` says how far the limits a scene's size needs reach.
 pub fn device_descriptor(adapter: &wgpu::Adapter, scene_limits: SceneLimits) -> wgpu::DeviceDescriptor<'static> {
     let quick_kernels = crate::lavapipe::kernels_compile_quickly();
-    let (required_features, required_limits) = requirements(&adapter.get_info(), adapter.features(), &adapter.limits(), scene_limits, quick_kernels);
+    // A `GLINT_PROFILE` that names no profile fails when the renderer is made.
+    let forced = ProfileName::forced().ok().flatten();
+    let profile = DeviceProfile::forced(forced, &adapter.get_info(), adapter.features(), quick_kernels);
+    let (required_features, required_limits) = requirements(&profile, &adapter.limits(), scene_limits);
     wgpu::DeviceDescriptor { label: Some("glint"), required_features, required_limits, ..Default::default() }
 }
 
-/// [`device_descriptor`]'s features and limits for the adapter `info`
-/// describes, which offers `features` and `offered`.
-fn requirements(
-    info: &wgpu::AdapterInfo,
-    features: wgpu::Features,
-    offered: &wgpu::Limits,
-    scene_limits: SceneLimits,
-    quick_kernels: bool,
-) -> (wgpu::Features, wgpu::Limits) {
-    let eye_tiles = crate::DeviceProfile::of(info, features, quick_kernels).eye_tiles;
+/// [`device_descriptor`]'s features and limits for an adapter of `profile`
+/// which offers the limits `offered`.
+fn requirements(profile: &DeviceProfile, offered: &wgpu::Limits, scene_limits: SceneLimits) -> (wgpu::Features, wgpu::Limits) {
+    let eye_tiles = profile.eye_tiles;
     let mut limits = wgpu::Limits::default();
     if scene_limits == SceneLimits::Adapter {
         for limit in SCENE_SIZED_LIMITS {
@@ -195,17 +218,22 @@ mod tests {
         let mut offered = wgpu::Limits::default();
         (offered.max_texture_dimension_2d, offered.max_storage_buffer_binding_size, offered.max_buffer_size) = (16384, 1 << 31, 1 << 32);
         offered.max_storage_buffers_per_shader_stage = 64;
-        let ask = |info: &wgpu::AdapterInfo, quick_kernels| requirements(info, wgpu::Features::SUBGROUP, &offered, SceneLimits::Default, quick_kernels);
+        let ask = |info: &wgpu::AdapterInfo, quick_kernels| {
+            requirements(&DeviceProfile::of(info, wgpu::Features::SUBGROUP, quick_kernels), &offered, SceneLimits::Default)
+        };
         assert_eq!(ask(&lavapipe(128), false), (wgpu::Features::SUBGROUP, wgpu::Limits::default()), "eye tiles");
         assert_eq!(ask(&lavapipe(128), true).0, wgpu::Features::empty(), "quick kernels read textures, so walk no eye tiles");
         let gpu = adapter("NVIDIA GeForce RTX 4090", wgpu::DeviceType::DiscreteGpu, 32);
         assert_eq!(ask(&gpu, false), (wgpu::Features::empty(), wgpu::Limits::default()));
         let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
         assert_eq!(ask(&small_groups, false).0, wgpu::Features::SUBGROUP);
-        let without = requirements(&lavapipe(128), wgpu::Features::empty(), &offered, SceneLimits::Default, false);
+        let without = requirements(&DeviceProfile::of(&lavapipe(128), wgpu::Features::empty(), false), &offered, SceneLimits::Default);
         assert_eq!(without.0, wgpu::Features::empty(), "an adapter without subgroups is not asked for them");
+        let plain = DeviceProfile::forced(Some(ProfileName::Plain), &lavapipe(128), wgpu::Features::SUBGROUP, false);
+        assert_eq!(requirements(&plain, &offered, SceneLimits::Default).0, wgpu::Features::empty(), "the plain profile walks no eye tiles");
 
-        let (_, limits) = requirements(&lavapipe(128), wgpu::Features::SUBGROUP, &offered, SceneLimits::Adapter, false);
+        let lavapipe_profile = DeviceProfile::of(&lavapipe(128), wgpu::Features::SUBGROUP, false);
+        let (_, limits) = requirements(&lavapipe_profile, &offered, SceneLimits::Adapter);
         let sized = wgpu::Limits {
             max_texture_dimension_2d: 16384,
             max_storage_buffer_binding_size: 1 << 31,

@@ -45,6 +45,17 @@ pub struct RayCounter {
 }
 
 impl SceneBuffers {
+    /// How its kernels are tuned: glint-gpu's choice, which front ends read.
+    pub fn tuning(&self) -> Tuning {
+        self.tuning
+    }
+
+    /// Tunes its kernels by hand (tests of each variant; the `variants` feature).
+    #[cfg(feature = "variants")]
+    pub fn retune(&mut self, tuning: Tuning) {
+        self.tuning = tuning;
+    }
+
     pub fn width(&self) -> u32 {
         self.width
     }

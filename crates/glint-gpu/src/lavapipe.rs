@@ -2,10 +2,15 @@
 //! device is made, and what it warns about once one is open. The variables
 //! are read by lavapipe alone (and Mesa's shader cache by Mesa's drivers); the
 //! device profile (profile.rs) lets them count only when the adapter is lavapipe.
+//! A front end describes its work (`Workload`); this file alone turns it into
+//! the driver's environment, and it alone changes the process environment.
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Once;
+
+use crate::workload::Workload;
 
 /// The variable by which lavapipe's compiler (llvmpipe) picks its SIMD width.
 pub const LAVAPIPE_WIDTH_ENV: &str = "LP_NATIVE_VECTOR_WIDTH";
@@ -36,43 +41,79 @@ const WIDE_WIDTH: &str = "256";
 /// (docs/decisions/040-wide-vectors-for-quick-and-long-renders.md).
 pub const LONG_RENDER_MIN_SAMPLES: u64 = 4_000_000;
 
-/// `prepare_driver_environment` chose the width, and the shader cache by it, for the
-/// environment chose neither: `compile_for_samples` may choose again.
+/// `prepare_base` chose the width, and the shader cache by it, for the
+/// environment chose neither: `choose_kernels` may choose again.
 static WIDTH_CHOSEN: AtomicBool = AtomicBool::new(false);
 static CACHE_CHOSEN: AtomicBool = AtomicBool::new(false);
+static BASE: Once = Once::new();
+static KERNELS: Once = Once::new();
+
+/// Readies lavapipe for `workload` before the process's first device is
+/// made ([`prepare_base`], then [`choose_kernels`] once). Lavapipe reads its
+/// variables when the first device is made, so only the first workload chooses.
+pub(crate) fn prepare(workload: &Workload) {
+    prepare_base();
+    KERNELS.call_once(|| {
+        if let Some(environment) = Environment::alone() {
+            choose_kernels(environment, workload.quick_kernels(), workload.samples_for_width());
+        }
+    });
+}
+
+/// The right to change the process environment: held only while this thread
+/// is the process's one thread, when nothing can read the environment as it
+/// changes. Elsewhere (a test harness's threads, a browser) Glint leaves the
+/// environment as it is: lavapipe then picks its own width and kernels, to
+/// the same bits.
+#[derive(Clone, Copy)]
+struct Environment(());
+
+impl Environment {
+    fn alone() -> Option<Environment> {
+        // Only this thread could start another, and it does not while it holds this.
+        #[cfg(target_os = "linux")]
+        let alone = std::fs::read_dir("/proc/self/task").is_ok_and(|tasks| tasks.count() == 1);
+        // Windows guards its environment with a lock.
+        #[cfg(windows)]
+        let alone = true;
+        #[cfg(not(any(target_os = "linux", windows)))]
+        let alone = false;
+        alone.then_some(Environment(()))
+    }
+
+    fn set(self, name: &str, value: impl AsRef<std::ffi::OsStr>) {
+        // SAFETY: `alone` found no other thread that could read the environment.
+        unsafe { std::env::set_var(name, value) };
+    }
+}
 
 /// Asks lavapipe for [`LAVAPIPE_WIDTH`]-bit vectors unless the environment
 /// already chooses a width, and gives each width its own shader cache unless
 /// the environment names one. Mesa 25.0 keys its cached kernels by CPU and
 /// compiler flags but not by vector width (`lp_disk_cache_create`), so a
 /// kernel cached by a process at one width crashes a process at another.
-/// Drivers read both variables when the first device is made.
-///
-/// # Safety
-/// Changes the process environment: call it before any other thread runs.
-pub unsafe fn prepare_driver_environment() {
-    let width = std::env::var_os(LAVAPIPE_WIDTH_ENV).unwrap_or_else(|| {
-        // SAFETY: the caller guarantees no other thread reads the environment.
-        unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, LAVAPIPE_WIDTH) };
-        WIDTH_CHOSEN.store(true, Ordering::Relaxed);
-        LAVAPIPE_WIDTH.into()
+/// Drivers read both variables when the first device is made; the record of
+/// rendered scenes lives in the cache named here.
+pub(crate) fn prepare_base() {
+    BASE.call_once(|| {
+        let Some(environment) = Environment::alone() else { return };
+        let width = std::env::var_os(LAVAPIPE_WIDTH_ENV).unwrap_or_else(|| {
+            environment.set(LAVAPIPE_WIDTH_ENV, LAVAPIPE_WIDTH);
+            WIDTH_CHOSEN.store(true, Ordering::Relaxed);
+            LAVAPIPE_WIDTH.into()
+        });
+        if std::env::var_os(SHADER_CACHE_ENV).is_none() {
+            cache_by_width(environment, &width);
+        }
     });
-    if std::env::var_os(SHADER_CACHE_ENV).is_none() {
-        // SAFETY: as above.
-        unsafe { cache_by_width(&width) };
-    }
 }
 
 /// Points Mesa's shader cache at the directory for `width`, when there is a
 /// cache home to put it in.
-///
-/// # Safety
-/// As [`prepare_driver_environment`].
-unsafe fn cache_by_width(width: &OsString) {
+fn cache_by_width(environment: Environment, width: &OsString) {
     let home = |name| std::env::var_os(name).filter(|v| !v.is_empty());
     if let Some(dir) = shader_cache_dir(width, home("XDG_CACHE_HOME"), home("HOME")) {
-        // SAFETY: the caller guarantees no other thread reads the environment.
-        unsafe { std::env::set_var(SHADER_CACHE_ENV, dir) };
+        environment.set(SHADER_CACHE_ENV, dir);
         CACHE_CHOSEN.store(true, Ordering::Relaxed);
     }
 }
@@ -94,55 +135,23 @@ pub fn width_for(samples: u64, quick: bool) -> &'static str {
     if quick || samples >= LONG_RENDER_MIN_SAMPLES { wide_width() } else { LAVAPIPE_WIDTH }
 }
 
-/// Chooses lavapipe's kernels for a command that renders `samples` samples in
-/// all: without LLVM's optimisation passes for a small render of a scene not
-/// rendered before ([`quick_compile_pays`]), unless the environment sets
-/// `GALLIVM_PERF` (set empty, it keeps the optimised kernels); and at
-/// [`width_for`] unless the environment chose a width, with the shader cache
-/// of that width. Lavapipe reads the flags and the width when the first
-/// device is made.
-///
-/// # Safety
-/// Changes the process environment: call it after [`prepare_driver_environment`] and
-/// before any other thread runs.
-pub unsafe fn compile_for_samples(samples: u64, rendered_before: bool) {
-    // SAFETY: the caller's guarantee.
-    unsafe { choose_kernels(quick_compile_pays(samples, rendered_before), samples) }
-}
-
-/// Chooses lavapipe's kernels for the viewer, as [`compile_for_samples`] does
-/// for a command: quick ones for a scene not viewed or rendered before. What
-/// its user waits for is the first image, most of which a cold start spends
-/// compiling the trace kernel: quick kernels show it sooner and trace the
-/// frames after it slower, until the next session compiles optimised ones for
-/// Mesa's cache (docs/decisions/047-quick-kernels-for-a-first-viewing.md).
-///
-/// # Safety
-/// As [`compile_for_samples`].
-pub unsafe fn compile_for_viewer(viewed_before: bool) {
-    // The viewer's samples are open-ended: none chooses the long renders' width.
-    // SAFETY: the caller's guarantee.
-    unsafe { choose_kernels(!viewed_before, 0) }
-}
-
 /// Asks lavapipe for quick kernels or optimised ones (unless `GALLIVM_PERF`
-/// chooses), at [`width_for`] `samples` unless the environment chose a width.
-///
-/// # Safety
-/// As [`compile_for_samples`].
-unsafe fn choose_kernels(quick: bool, samples: u64) {
+/// chooses: set empty, it keeps the optimised kernels), at [`width_for`]
+/// `samples` unless the environment chose a width, with the shader cache of
+/// that width. A viewer's first image waits mostly for the trace kernel's
+/// compile: quick kernels show it sooner and trace the frames after it
+/// slower, until the next session compiles optimised ones for Mesa's cache
+/// (docs/decisions/047-quick-kernels-for-a-first-viewing.md).
+fn choose_kernels(environment: Environment, quick: bool, samples: u64) {
     let quick = std::env::var_os(LAVAPIPE_PERF_ENV).is_none() && quick;
     if quick {
-        // SAFETY: the caller guarantees no other thread reads the environment.
-        unsafe { std::env::set_var(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG) };
+        environment.set(LAVAPIPE_PERF_ENV, QUICK_COMPILE_FLAG);
     }
     if WIDTH_CHOSEN.load(Ordering::Relaxed) {
         let width = width_for(samples, quick);
-        // SAFETY: as above.
-        unsafe { std::env::set_var(LAVAPIPE_WIDTH_ENV, width) };
+        environment.set(LAVAPIPE_WIDTH_ENV, width);
         if CACHE_CHOSEN.load(Ordering::Relaxed) {
-            // SAFETY: as above.
-            unsafe { cache_by_width(&width.into()) };
+            cache_by_width(environment, &width.into());
         }
     }
 }
@@ -154,14 +163,6 @@ pub(crate) fn vector_bits(info: &wgpu::AdapterInfo) -> Option<u32> {
     name[name.rfind(' ')? + 1..].parse().ok()
 }
 
-/// Whether a command of `samples` samples is better served by quick kernels:
-/// a small render of a scene not rendered before. A scene rendered before is
-/// likely rendered again, and with optimised kernels Mesa's cache then holds
-/// the kernels that run fastest; a quick kernel would be cached and rerun.
-pub fn quick_compile_pays(samples: u64, rendered_before: bool) -> bool {
-    !rendered_before && samples <= QUICK_COMPILE_MAX_SAMPLES
-}
-
 /// Whether the kernels this process compiles on lavapipe skip LLVM's
 /// optimisation passes, as its `GALLIVM_PERF` asks.
 pub(crate) fn kernels_compile_quickly() -> bool {
@@ -170,8 +171,17 @@ pub(crate) fn kernels_compile_quickly() -> bool {
 
 /// Whether `MESA_SHADER_CACHE_DISABLE` turns Mesa's shader cache off, as
 /// Mesa reads a boolean variable.
-pub fn shader_cache_disabled() -> bool {
+fn shader_cache_disabled() -> bool {
     std::env::var("MESA_SHADER_CACHE_DISABLE").is_ok_and(|v| matches!(v.to_ascii_lowercase().as_str(), "1" | "true" | "yes" | "y" | "on"))
+}
+
+/// For reports of first compiles' times on a Mesa driver: whether Mesa's
+/// shader cache lets them stand for a fresh machine's.
+pub(crate) fn cold_start_note(info: &wgpu::AdapterInfo) -> Option<&'static str> {
+    mesa_version(&info.driver_info).map(|_| match shader_cache_disabled() {
+        true => "Mesa's shader cache disabled",
+        false => "Mesa's shader cache enabled: set MESA_SHADER_CACHE_DISABLE=true for a fresh machine's times",
+    })
 }
 
 /// The scenes rendered on this machine, one empty file each (named by a hash
@@ -182,9 +192,10 @@ pub struct RenderedScenes {
 }
 
 impl RenderedScenes {
-    /// The record of the shader cache this process uses (call it after
-    /// [`prepare_driver_environment`], which names the cache).
-    pub fn of_shader_cache() -> Self {
+    /// The record of the scenes rendered on this machine, kept where this
+    /// process's kernels are cached.
+    pub fn on_this_machine() -> Self {
+        prepare_base();
         let cache = std::env::var_os(SHADER_CACHE_ENV).filter(|dir| !dir.is_empty() && !shader_cache_disabled());
         Self { dir: cache.map(|dir| PathBuf::from(dir).join("glint-rendered-scenes")) }
     }
@@ -262,12 +273,17 @@ mod tests {
     }
 
     #[test]
-    fn quick_kernels_only_for_small_renders_of_new_scenes() {
-        assert!(quick_compile_pays(512 * 512, false));
-        assert!(quick_compile_pays(QUICK_COMPILE_MAX_SAMPLES, false));
-        assert!(!quick_compile_pays(QUICK_COMPILE_MAX_SAMPLES + 1, false));
-        assert!(!quick_compile_pays(1024 * 1024, false));
-        assert!(!quick_compile_pays(64 * 64, true));
+    fn the_environment_changes_only_while_the_process_has_one_thread() {
+        let (started, stop) = (std::sync::Barrier::new(2), std::sync::Barrier::new(2));
+        std::thread::scope(|scope| {
+            scope.spawn(|| {
+                started.wait();
+                stop.wait();
+            });
+            started.wait();
+            assert!(Environment::alone().is_none(), "another thread could read the environment");
+            stop.wait();
+        });
     }
 
     #[test]

@@ -3,9 +3,12 @@
 //! accumulated samples and reads the image back.
 //!
 //! The modules that are a subsystem of their own are public (`shaders`,
-//! `interactive`, `probe`, `display`, `schedule`, `kernel_dump`); the host
-//! pipeline's types are used from the crate root. Image files are
+//! `interactive`, `probe`, `display`, `schedule`, `kernel_dump`), and
+//! `lavapipe`'s names and measures, for tests of what Glint asks of it; the
+//! host pipeline's types are used from the crate root. Image files are
 //! `glint-image`'s, re-exported here for the front ends that render them.
+//! Front ends describe their work (`Workload`); the driver's environment and
+//! the kernels' tuning are this crate's alone to choose.
 
 mod device;
 mod error_scope;
@@ -14,7 +17,7 @@ mod eye_tiles;
 mod frame;
 pub mod interactive;
 pub mod kernel_dump;
-mod lavapipe;
+pub mod lavapipe;
 mod pipelines;
 pub mod primitive_dispatch;
 pub mod probe;
@@ -25,15 +28,14 @@ mod scene_textures;
 pub mod schedule;
 pub mod shaders;
 mod tuning;
+mod workload;
 
 pub use device::{adapter_rank, backends, device_descriptor, driver_warning, Gpu, SceneLimits, ADAPTER_ENV, NO_ADAPTER_HINT};
-pub use lavapipe::{
-    compile_for_samples, compile_for_viewer, prepare_driver_environment, shader_cache_dir, shader_cache_disabled, width_for, RenderedScenes, LAVAPIPE_PERF_ENV, LAVAPIPE_WIDTH, LAVAPIPE_WIDTH_ENV,
-    LONG_RENDER_MIN_SAMPLES, QUICK_COMPILE_MAX_SAMPLES, SHADER_CACHE_ENV,
-};
-pub use profile::{CompiledKernels, DeviceProfile, PACKET_EYE_RAYS};
+pub use lavapipe::RenderedScenes;
+pub use profile::{CompiledKernels, DeviceProfile, ProfileName, PACKET_EYE_RAYS, PROFILE_ENV};
 pub use eye_tiles::binning::Footprints;
 pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
+pub use workload::Workload;
 pub use frame::{Acceleration, Prepared};
 pub use glint_image::{
     check_output_path, read_exr_channels, read_pfm, read_pfm_channels, read_ppm, stitch, write_atomically, write_image, write_image_channels, Bits,
@@ -48,6 +50,9 @@ pub use renderer::{RenderOptions, Renderer, SceneBuffers, ToneMap};
 pub enum GpuError {
     #[error("{0}")]
     NoAdapter(String),
+    /// `GLINT_PROFILE` names no profile.
+    #[error("{0}")]
+    Profile(String),
     #[error("cannot open the GPU device: {0}")]
     Device(String),
     #[error("shader error: {0}")]

@@ -1,13 +1,64 @@
 //! The device profile: every device-dependent choice Glint makes, made once
 //! from the opened adapter. Lavapipe (Mesa's software Vulkan driver) gets the
 //! choices tuned for it; every other device gets the plain ones, the code as
-//! the lecture reads it. Every choice traces the same bits.
+//! the lecture reads it. Every choice traces the same bits. `GLINT_PROFILE`
+//! forces either profile on any adapter, for tests and bug reports.
 
 use glint_encoding::gpu_types::GpuScene;
 
 use crate::lavapipe;
 use crate::shaders::SceneArrays;
 use crate::tuning::{fits_uniform_tree, Tuning, WorkgroupSizes};
+use crate::workload::Workload;
+use crate::GpuError;
+
+/// The variable that forces a profile on any adapter: `plain` or `lavapipe`.
+pub const PROFILE_ENV: &str = "GLINT_PROFILE";
+
+/// The profiles Glint has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ProfileName {
+    /// The lecture's code, one ray at a time: what every GPU and browser runs.
+    Plain,
+    /// The choices tuned for lavapipe.
+    Lavapipe,
+}
+
+impl ProfileName {
+    pub const ALL: [ProfileName; 2] = [ProfileName::Plain, ProfileName::Lavapipe];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ProfileName::Plain => "plain",
+            ProfileName::Lavapipe => "lavapipe",
+        }
+    }
+
+    /// The profile `GLINT_PROFILE` forces, if it names one; an error in one
+    /// line if it names none.
+    pub fn forced() -> Result<Option<ProfileName>, GpuError> {
+        match std::env::var_os(PROFILE_ENV) {
+            None => Ok(None),
+            Some(value) => value.to_str().and_then(|v| v.parse().ok()).map(Some).ok_or_else(|| {
+                GpuError::Profile(format!("{PROFILE_ENV}={} names no device profile: use plain or lavapipe", value.to_string_lossy()))
+            }),
+        }
+    }
+}
+
+impl std::str::FromStr for ProfileName {
+    type Err = ();
+
+    fn from_str(text: &str) -> Result<ProfileName, ()> {
+        ProfileName::ALL.into_iter().find(|name| name.as_str() == text).ok_or(())
+    }
+}
+
+impl std::fmt::Display for ProfileName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
 
 /// Eye rays from which a one-off render on lavapipe traces packets: fewer
 /// trace sooner one at a time, whose kernel lavapipe compiles faster
@@ -47,6 +98,9 @@ impl std::fmt::Display for CompiledKernels {
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct DeviceProfile {
+    pub name: ProfileName,
+    /// `GLINT_PROFILE` chose it, not the adapter.
+    pub forced: bool,
     /// On lavapipe, the kernels it compiles: the one choice the process
     /// environment makes, and it counts on lavapipe alone.
     pub kernels: Option<CompiledKernels>,
@@ -54,7 +108,7 @@ pub struct DeviceProfile {
     pub scene_arrays: SceneArrays,
     /// Whether the primary kernel traces 2×2 ray packets at all.
     pub packets: bool,
-    /// Eye rays from which a one-off render traces packets (see `packets_for`).
+    /// Eye rays from which a one-off render traces packets (`Workload::traces_packets`).
     pub packet_eye_rays: u64,
     /// Whether kernels read a BVH that fits uniform buffers from there:
     /// lavapipe loads from them per lane without a branch, but a GPU's
@@ -84,35 +138,62 @@ impl DeviceProfile {
     /// `features`; `quick_kernels` is what the process environment asked
     /// lavapipe for, which no other adapter reads.
     pub fn of(info: &wgpu::AdapterInfo, features: wgpu::Features, quick_kernels: bool) -> DeviceProfile {
+        let name = if is_lavapipe(info) { ProfileName::Lavapipe } else { ProfileName::Plain };
+        DeviceProfile::choose(name, false, info, features, quick_kernels)
+    }
+
+    /// The profile `forced` names on that adapter, else the adapter's own.
+    /// Forced on lavapipe, the plain profile is `Tuning::PLAIN`, what every
+    /// GPU whose SIMD groups are too wide for eye tiles runs; the lavapipe
+    /// profile on another adapter walks eye tiles only where its SIMD groups fit.
+    pub fn forced(forced: Option<ProfileName>, info: &wgpu::AdapterInfo, features: wgpu::Features, quick_kernels: bool) -> DeviceProfile {
+        match forced {
+            Some(name) => DeviceProfile::choose(name, true, info, features, quick_kernels),
+            None => DeviceProfile::of(info, features, quick_kernels),
+        }
+    }
+
+    fn choose(name: ProfileName, forced: bool, info: &wgpu::AdapterInfo, features: wgpu::Features, quick_kernels: bool) -> DeviceProfile {
+        let tuned = name == ProfileName::Lavapipe;
         let kernels = is_lavapipe(info).then(|| CompiledKernels { quick: quick_kernels, vector_bits: lavapipe::vector_bits(info) });
         // Kernels compiled without optimisation passes keep every value in
         // memory anyway, and lavapipe fetches a texel without the per-lane
         // bounds branch a storage buffer's load takes.
-        let scene_arrays = if kernels.is_some_and(|k| k.quick) { SceneArrays::Textures } else { SceneArrays::Buffers };
+        let scene_arrays = if tuned && kernels.is_some_and(|k| k.quick) { SceneArrays::Textures } else { SceneArrays::Buffers };
         let subgroups_fit = features.contains(wgpu::Features::SUBGROUP)
             && TILE_SIMD_SIZES.contains(&info.subgroup_min_size)
             && TILE_SIMD_SIZES.contains(&info.subgroup_max_size);
-        let eye_tiles = scene_arrays == SceneArrays::Buffers && subgroups_fit;
+        let eye_tiles = scene_arrays == SceneArrays::Buffers && subgroups_fit && (tuned || !forced);
         DeviceProfile {
+            name,
+            forced,
             kernels,
             scene_arrays,
             // Eye tiles are walked by packets; otherwise packets are lavapipe's.
-            packets: kernels.is_some() || eye_tiles,
-            packet_eye_rays: if kernels.is_some() { PACKET_EYE_RAYS } else { 0 },
-            uniform_tree: kernels.is_some(),
+            packets: tuned || eye_tiles,
+            packet_eye_rays: if tuned { PACKET_EYE_RAYS } else { 0 },
+            uniform_tree: tuned,
             eye_tiles,
             // A browser's page may not wait for a read-back, and its resolve
-            // kernel compiles in the GPU process, off the page's thread.
+            // kernel compiles in the GPU process, off the page's thread. Where
+            // it resolves is the adapter's, whatever the profile: both ways
+            // give the same bits (tests/resolve.rs).
             resolves_on_host: info.device_type == wgpu::DeviceType::Cpu && info.backend != wgpu::Backend::BrowserWebGpu,
-            spread: kernels.is_some() || eye_tiles,
-            one_walk_tree: kernels.is_some(),
-            workgroups: if kernels.is_some() { WorkgroupSizes::LAVAPIPE } else { WorkgroupSizes::PLAIN },
+            spread: tuned || eye_tiles,
+            one_walk_tree: tuned,
+            workgroups: if tuned { WorkgroupSizes::LAVAPIPE } else { WorkgroupSizes::PLAIN },
         }
     }
 
-    /// The profile of an open device, with what this process asked lavapipe for.
-    pub fn of_device(device: &wgpu::Device) -> DeviceProfile {
-        DeviceProfile::of(&device.adapter_info(), device.features(), lavapipe::kernels_compile_quickly())
+    /// The profile of an open device, with what this process asked lavapipe
+    /// for, unless `GLINT_PROFILE` forces one; an error if it names none.
+    pub fn of_device(device: &wgpu::Device) -> Result<DeviceProfile, GpuError> {
+        Ok(DeviceProfile::of_device_forced(device, ProfileName::forced()?))
+    }
+
+    /// The profile `forced` names on an open device, else the device's own.
+    pub fn of_device_forced(device: &wgpu::Device, forced: Option<ProfileName>) -> DeviceProfile {
+        DeviceProfile::forced(forced, &device.adapter_info(), device.features(), lavapipe::kernels_compile_quickly())
     }
 
     /// This profile with the scene's arrays read as `arrays` says (tests that
@@ -121,13 +202,13 @@ impl DeviceProfile {
         DeviceProfile { scene_arrays: arrays, eye_tiles: self.eye_tiles && arrays == SceneArrays::Buffers, ..self }
     }
 
-    /// How `scene`'s kernels are tuned here before any view is binned into
-    /// eye tiles: packets wherever the profile traces them (the viewer's,
-    /// whose frames repay any compile).
-    pub fn tuning(&self, scene: &GpuScene) -> Tuning {
+    /// How `scene`'s kernels are tuned here for `workload` before any view
+    /// is binned into eye tiles: packets wherever the profile traces them and
+    /// the work repays their compile.
+    pub fn tuning(&self, scene: &GpuScene, workload: &Workload) -> Tuning {
         Tuning {
             arrays: self.scene_arrays,
-            packets: self.packets,
+            packets: self.packets && workload.traces_packets(self.packet_eye_rays),
             uniform_tree: self.uniform_tree && fits_uniform_tree(scene),
             eye_tiles: false,
             spread: self.spread,
@@ -136,17 +217,13 @@ impl DeviceProfile {
         }
     }
 
-    /// Whether a one-off command that traces `eye_rays` eye rays in all
-    /// traces packets: only once they repay their compile.
-    pub fn packets_for(&self, eye_rays: u64) -> bool {
-        self.packets && eye_rays >= self.packet_eye_rays
-    }
-
-    /// One line for users: which profile, and on lavapipe which kernels.
+    /// One line for users: which profile, whether `GLINT_PROFILE` chose it,
+    /// and on lavapipe which kernels.
     pub fn describe(&self) -> String {
+        let forced = if self.forced { format!(", forced by {PROFILE_ENV}={}", self.name) } else { String::new() };
         match self.kernels {
-            Some(kernels) => format!("lavapipe profile ({kernels})"),
-            None => "plain profile".to_string(),
+            Some(kernels) => format!("{} profile{forced} ({kernels})", self.name),
+            None => format!("{} profile{forced}", self.name),
         }
     }
 }
@@ -194,6 +271,8 @@ pub(crate) mod tests {
         for bits in [128, 256] {
             let optimised = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, false);
             let want = DeviceProfile {
+                name: ProfileName::Lavapipe,
+                forced: false,
                 kernels: Some(CompiledKernels { quick: false, vector_bits: Some(bits) }),
                 scene_arrays: SceneArrays::Buffers,
                 packets: true,
@@ -206,7 +285,7 @@ pub(crate) mod tests {
                 workgroups: WorkgroupSizes::LAVAPIPE,
             };
             assert_eq!(optimised, want);
-            assert!(optimised.tuning(&empty_scene()).one_walk_tree, "lavapipe walks the ray tree in one walk");
+            assert_eq!(optimised.tuning(&empty_scene(), &Workload::UNDESCRIBED), Tuning { eye_tiles: false, ..Tuning::LAVAPIPE });
             let quick = DeviceProfile::of(&lavapipe(bits), wgpu::Features::SUBGROUP, true);
             let want = DeviceProfile {
                 kernels: Some(CompiledKernels { quick: true, vector_bits: Some(bits) }),
@@ -215,7 +294,9 @@ pub(crate) mod tests {
                 ..want
             };
             assert_eq!(quick, want);
-            assert!(!optimised.packets_for(512 * 512) && optimised.packets_for(PACKET_EYE_RAYS));
+            let packets = |workload: Workload| optimised.tuning(&empty_scene(), &workload).packets;
+            assert!(!packets(Workload::render(512 * 512, 512 * 512, true)), "a small render's packets do not repay their compile");
+            assert!(packets(Workload::render(PACKET_EYE_RAYS, PACKET_EYE_RAYS, true)) && packets(Workload::interactive(false)));
             assert_eq!(quick.describe(), format!("lavapipe profile (quick kernels, {bits} bits)"));
         }
         let without_subgroups = DeviceProfile::of(&lavapipe(128), wgpu::Features::empty(), false);
@@ -228,6 +309,8 @@ pub(crate) mod tests {
             for quick_kernels in [false, true] {
                 let profile = DeviceProfile::of(&adapter(name, device_type, subgroups), wgpu::Features::SUBGROUP, quick_kernels);
                 let plain = DeviceProfile {
+                    name: ProfileName::Plain,
+                    forced: false,
                     kernels: None,
                     scene_arrays: SceneArrays::Buffers,
                     packets: false,
@@ -240,9 +323,10 @@ pub(crate) mod tests {
                     workgroups: WorkgroupSizes::PLAIN,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
-                assert_eq!(profile.tuning(&empty_scene()), Tuning::PLAIN, "{name}: the lecture's code, one ray at a time");
+                for workload in [Workload::UNDESCRIBED, Workload::interactive(false), Workload::render(u64::MAX, u64::MAX, true)] {
+                    assert_eq!(profile.tuning(&empty_scene(), &workload), Tuning::PLAIN, "{name}: the lecture's code, one ray at a time");
+                }
                 assert_eq!(profile.describe(), "plain profile");
-                assert!(!profile.packets_for(u64::MAX));
             }
         }
     }
@@ -251,7 +335,8 @@ pub(crate) mod tests {
     fn a_gpu_whose_subgroups_fit_eye_tiles_walks_them_in_packets() {
         let small_groups = adapter("a GPU of 8-lane SIMD groups", wgpu::DeviceType::IntegratedGpu, 8);
         let profile = DeviceProfile::of(&small_groups, wgpu::Features::SUBGROUP, true);
-        assert!(profile.eye_tiles && profile.packets && profile.packets_for(1) && profile.spread, "{profile:?}");
+        assert!(profile.eye_tiles && profile.packets && profile.spread, "{profile:?}");
+        assert!(profile.tuning(&empty_scene(), &Workload::render(1, 1, false)).packets, "eye tiles repay packets at once");
         assert!(!profile.uniform_tree && !profile.one_walk_tree && profile.scene_arrays == SceneArrays::Buffers);
         assert_eq!(profile.workgroups, WorkgroupSizes::PLAIN);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
@@ -270,6 +355,36 @@ pub(crate) mod tests {
         }
         assert!(!DeviceProfile::of(&swiftshader, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
         assert!(DeviceProfile::of(&swiftshader, wgpu::Features::SUBGROUP, false).eye_tiles, "4-lane groups fit eye tiles");
+    }
+
+    #[test]
+    fn a_forced_profile_makes_its_choices_on_any_adapter() {
+        let lavapipe = lavapipe(128);
+        let plain = DeviceProfile::forced(Some(ProfileName::Plain), &lavapipe, wgpu::Features::SUBGROUP, false);
+        assert_eq!(plain.tuning(&empty_scene(), &Workload::UNDESCRIBED), Tuning::PLAIN, "what every GPU of wide SIMD groups runs");
+        assert_eq!((plain.name, plain.forced, plain.eye_tiles), (ProfileName::Plain, true, false));
+        assert_eq!(plain.describe(), "plain profile, forced by GLINT_PROFILE=plain (optimised kernels, 128 bits)");
+        assert!(plain.resolves_on_host, "where a profile resolves is the adapter's");
+        let own = DeviceProfile::of(&lavapipe, wgpu::Features::SUBGROUP, false);
+        assert_eq!(DeviceProfile::forced(Some(ProfileName::Lavapipe), &lavapipe, wgpu::Features::SUBGROUP, false), DeviceProfile { forced: true, ..own });
+        assert_eq!(DeviceProfile::forced(None, &lavapipe, wgpu::Features::SUBGROUP, false), own);
+        let quick = DeviceProfile::forced(Some(ProfileName::Plain), &lavapipe, wgpu::Features::SUBGROUP, true);
+        assert_eq!(quick.scene_arrays, SceneArrays::Buffers, "textures are lavapipe's choice");
+
+        let gpu = adapter("NVIDIA GeForce RTX 4090", wgpu::DeviceType::DiscreteGpu, 32);
+        let tuned = DeviceProfile::forced(Some(ProfileName::Lavapipe), &gpu, wgpu::Features::SUBGROUP, true);
+        assert_eq!(tuned.tuning(&empty_scene(), &Workload::UNDESCRIBED), Tuning { eye_tiles: false, ..Tuning::LAVAPIPE });
+        assert!(!tuned.eye_tiles && tuned.kernels.is_none() && !tuned.resolves_on_host, "32-lane groups walk no eye tiles: {tuned:?}");
+        assert_eq!(tuned.describe(), "lavapipe profile, forced by GLINT_PROFILE=lavapipe");
+    }
+
+    #[test]
+    fn profile_names_parse_from_what_glint_profile_may_say() {
+        for name in ProfileName::ALL {
+            assert_eq!(name.as_str().parse(), Ok(name));
+        }
+        assert_eq!("fast".parse::<ProfileName>(), Err(()));
+        assert_eq!("Plain".parse::<ProfileName>(), Err(()), "names are lower case, as GLINT_ADAPTER's are not");
     }
 
     #[test]

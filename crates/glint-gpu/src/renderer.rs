@@ -20,6 +20,7 @@ use crate::scene_textures;
 use crate::profile::DeviceProfile;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tuning::Tuning;
+use crate::workload::Workload;
 use crate::{display, GpuError, Image, Readback, Region};
 
 /// How linear radiance becomes a display value.
@@ -87,6 +88,8 @@ pub struct Renderer {
     pub(crate) profile: DeviceProfile,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
+    /// The work its scenes are uploaded for, which their tuning serves.
+    workload: Workload,
     /// Band sizes of batch renders, kept from frame to frame so the next one
     /// starts with bands of the right size.
     bands: Mutex<BandScheduler>,
@@ -118,27 +121,43 @@ pub struct SceneBuffers {
     /// What the kernels that render it are compiled for: the primitive kinds,
     /// the shading terms, and the view when a command renders one alone.
     pub specialization: Specialization,
-    /// How those kernels are tuned for the device (its profile's choice).
-    pub tuning: Tuning,
+    /// How those kernels are tuned for the device: its profile's choice for
+    /// the renderer's work, read with [`SceneBuffers::tuning`].
+    pub(crate) tuning: Tuning,
 }
 
 impl Renderer {
-    /// A renderer that makes the choices of the device's profile.
+    /// A renderer that makes the choices of the device's profile, or of the
+    /// one `GLINT_PROFILE` forces, for work it is not told of (see [`Renderer::plan`]).
     pub fn new(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource) -> Result<Self, GpuError> {
-        let profile = DeviceProfile::of_device(&device);
-        Self::with_profile(device, queue, source, profile)
+        let profile = DeviceProfile::of_device(&device)?;
+        Self::make(device, queue, source, profile)
     }
 
     /// A renderer whose kernels read the scene's arrays from `arrays`, whatever
-    /// the device's profile would choose.
+    /// the device's profile would choose (tests that compare the ways).
+    #[cfg(feature = "variants")]
     pub fn reading(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, arrays: SceneArrays) -> Result<Self, GpuError> {
-        let profile = DeviceProfile::of_device(&device).reading(arrays);
-        Self::with_profile(device, queue, source, profile)
+        let profile = DeviceProfile::of_device(&device)?.reading(arrays);
+        Self::make(device, queue, source, profile)
     }
 
     /// A renderer that makes the choices of `profile` (tests hold one profile's
-    /// choices to another's on the same device).
+    /// choices to another's on the same device; the `variants` feature).
+    #[cfg(feature = "variants")]
     pub fn with_profile(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
+        Self::make(device, queue, source, profile)
+    }
+
+    /// Tunes the scenes uploaded from now on for `workload`: where the
+    /// profile traces packets, a one-off render traces them only once they
+    /// repay their compile.
+    pub fn plan(mut self, workload: Workload) -> Self {
+        self.workload = workload;
+        self
+    }
+
+    fn make(device: wgpu::Device, queue: wgpu::Queue, source: &ShaderSource, profile: DeviceProfile) -> Result<Self, GpuError> {
         let arrays = profile.scene_arrays;
         let scene_layout = scene_bind_group_layout(&device, arrays);
         let eye_tiles_layout = eye_tiles::bind_group_layout(&device);
@@ -160,6 +179,7 @@ impl Renderer {
             scene_layout,
             eye_tiles_layout,
             profile,
+            workload: Workload::UNDESCRIBED,
             lost,
             bands: Mutex::new(BandScheduler::before_compile(BATCH_TARGET)),
             max_tile_pixels: None,
@@ -262,7 +282,7 @@ impl Renderer {
         let materials = uniform("materials", bytemuck::cast_slice(&scene.materials));
         let uniforms_buffer = uniform("scene uniforms", bytemuck::bytes_of(&uniforms));
         let specialization = Specialization::of(scene, &uniforms);
-        let tuning = self.profile.tuning(scene);
+        let tuning = self.profile.tuning(scene, &self.workload);
         // Bound whether or not the kernels read them; zeros for a tree too large.
         let tree_uniform = |label: &str, records: &[u8]| {
             let mut contents = vec![0; UNIFORM_ARRAY_BYTES];
@@ -510,8 +530,7 @@ impl Renderer {
     ) -> Result<(), GpuError> {
         let kernel = kernel_for(view);
         let specialization = scene.specialization.dispatching(view);
-        let mut tuning = scene.tuning;
-        tuning.eye_tiles &= eye_tiles::tiles_align(&region);
+        let tuning = if eye_tiles::tiles_align(&region) { scene.tuning } else { scene.tuning.without_eye_tiles() };
         let pipeline = self.pipelines.get(kernel, specialization, tuning)?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));

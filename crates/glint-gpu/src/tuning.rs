@@ -9,32 +9,60 @@ use glint_encoding::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
 
 use crate::shaders::{Kernel, SceneArrays};
 
+/// Its choices are glint-gpu's alone to make, from the device's profile and
+/// the work a front end describes: outside the crate they can be read, never
+/// set. The `variants` feature lets tests set each one, to hold each variant
+/// to the plain code's bits; no front end enables it.
+///
+/// ```compile_fail,E0616
+/// fn retune(tuning: &mut glint_gpu::Tuning) {
+///     tuning.packets = false;
+/// }
+/// ```
+///
+/// ```compile_fail,E0616
+/// fn retune(scene: &mut glint_gpu::SceneBuffers) {
+///     scene.tuning = glint_gpu::Tuning::PLAIN;
+/// }
+/// ```
+///
+/// ```compile_fail,E0451
+/// let tuning = glint_gpu::Tuning { packets: true, ..glint_gpu::Tuning::PLAIN };
+/// ```
+///
+/// What a front end may do: read them.
+///
+/// ```
+/// fn traces_packets(scene: &glint_gpu::SceneBuffers) -> bool {
+///     scene.tuning().packets()
+/// }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Tuning {
     /// How the kernels read the scene's arrays (one way per renderer: its
     /// bind group layout holds that kind of binding).
-    pub arrays: SceneArrays,
+    pub(crate) arrays: SceneArrays,
     /// The primary kernel traces the eye rays of 2×2 blocks of pixels as ray
     /// packets: faster per ray, slower to compile.
-    pub packets: bool,
+    pub(crate) packets: bool,
     /// The kernels read the BVH's records and grids from uniform buffers,
     /// which the scene's tree fits ([`fits_uniform_tree`]). The storage
     /// buffers hold the tree too, for kernels tuned without this.
-    pub uniform_tree: bool,
+    pub(crate) uniform_tree: bool,
     /// The primary kernel's packets take their eye rays' primitives from their
     /// tile's list (`eye_tiles`) instead of the BVH: set by the renderer when
     /// it has binned the scene for the view, on a device whose profile allows it.
-    pub eye_tiles: bool,
+    pub(crate) eye_tiles: bool,
     /// A dispatch's workgroups and a workgroup's invocations take their places
     /// in the order of shaders/fast/spread.wgsl (for lavapipe's threads and
     /// SIMD groups, and the eye tiles' SIMD groups), else in row order.
-    pub spread: bool,
+    pub(crate) spread: bool,
     /// The trace and probe kernels walk the ray tree as one loop whose step is
     /// one query, a ray of the tree or a shadow ray, through one call of the
     /// BVH walk (shaders/fast/ray_tree.wgsl), which lavapipe compiles once.
-    pub one_walk_tree: bool,
+    pub(crate) one_walk_tree: bool,
     /// The workgroups of the kernels that trace row bands.
-    pub workgroups: WorkgroupSizes,
+    pub(crate) workgroups: WorkgroupSizes,
 }
 
 /// The invocations of a workgroup, across and down, of the kernels that trace
@@ -103,6 +131,40 @@ impl Tuning {
         one_walk_tree: false,
         workgroups: WorkgroupSizes::PLAIN,
     };
+
+    pub fn arrays(self) -> SceneArrays {
+        self.arrays
+    }
+
+    pub fn packets(self) -> bool {
+        self.packets
+    }
+
+    pub fn uniform_tree(self) -> bool {
+        self.uniform_tree
+    }
+
+    pub fn eye_tiles(self) -> bool {
+        self.eye_tiles
+    }
+
+    pub fn spread(self) -> bool {
+        self.spread
+    }
+
+    pub fn one_walk_tree(self) -> bool {
+        self.one_walk_tree
+    }
+
+    pub fn workgroups(self) -> WorkgroupSizes {
+        self.workgroups
+    }
+
+    /// This tuning as dispatched where eye tiles cannot be walked: over a
+    /// region whose workgroups start off the tiles' corners (a pick's pixel).
+    pub fn without_eye_tiles(self) -> Tuning {
+        Tuning { eye_tiles: false, ..self }
+    }
 
     /// Every choice of lavapipe's profile at once, eye tiles included: what
     /// tests hold the plain tuning's bits to.
@@ -204,6 +266,39 @@ impl Tuning {
              const BAND_WORKGROUP_WIDTH: u32 = {width}u;\nconst BAND_WORKGROUP_HEIGHT: u32 = {band_height}u;\nconst PRIMARY_WORKGROUP_HEIGHT: u32 = {primary_height}u;\n",
             self.packets
         )
+    }
+}
+
+/// Each choice set by hand, for tests that hold each variant to the plain
+/// code's bits (the `variants` feature, which only tests enable).
+#[cfg(feature = "variants")]
+impl Tuning {
+    pub fn with_arrays(self, arrays: SceneArrays) -> Tuning {
+        Tuning { arrays, ..self }
+    }
+
+    pub fn with_packets(self, packets: bool) -> Tuning {
+        Tuning { packets, ..self }
+    }
+
+    pub fn with_uniform_tree(self, uniform_tree: bool) -> Tuning {
+        Tuning { uniform_tree, ..self }
+    }
+
+    pub fn with_eye_tiles(self, eye_tiles: bool) -> Tuning {
+        Tuning { eye_tiles, ..self }
+    }
+
+    pub fn with_spread(self, spread: bool) -> Tuning {
+        Tuning { spread, ..self }
+    }
+
+    pub fn with_one_walk_tree(self, one_walk_tree: bool) -> Tuning {
+        Tuning { one_walk_tree, ..self }
+    }
+
+    pub fn with_workgroups(self, workgroups: WorkgroupSizes) -> Tuning {
+        Tuning { workgroups, ..self }
     }
 }
 

@@ -302,7 +302,7 @@ mod tests {
     use glint_encoding::gpu_types::View;
     use glint_gpu::schedule::BandScheduler;
     use glint_gpu::shaders::{Kernel, ShaderSource};
-    use glint_gpu::{RenderOptions, Tuning};
+    use glint_gpu::RenderOptions;
 
     use super::{Accumulation, Canvas, Completions, Kernels, Step, POLL_INTERVAL};
 
@@ -348,7 +348,7 @@ mod tests {
         kernels.warm_up(&scene, View::Shaded).unwrap();
         let warmed = kernels.renderer.pipelines_created();
         let canvas = Canvas::new(Arc::clone(&kernels), &scene, View::Shaded, (40, 30), 1).unwrap();
-        let (specialization, tuning) = (canvas.prepared.buffers.specialization, canvas.prepared.buffers.tuning);
+        let (specialization, tuning) = (canvas.prepared.buffers.specialization, canvas.prepared.buffers.tuning());
         assert_eq!(specialization.view, Some(View::Shaded), "the canvas's kernels are for its first view alone");
         let trace = (Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)), tuning.for_kernel(Kernel::Trace));
         assert_eq!(warmed, [trace]);
@@ -358,7 +358,7 @@ mod tests {
         canvas.renderer().pick(&canvas.prepared.buffers, 20, 15).unwrap();
         let mut created = kernels.renderer.pipelines_created();
         created.retain(|p| !warmed.contains(p));
-        let picking = Tuning { eye_tiles: false, ..tuning }.for_kernel(Kernel::Primary);
+        let picking = tuning.without_eye_tiles().for_kernel(Kernel::Primary);
         assert_eq!(created, [(Kernel::Primary, Kernel::Primary.compiled_for(specialization.dispatching(View::Id)), picking)]);
         assert_eq!(specialization.dispatching(View::Id).view, None);
     }
