@@ -1,5 +1,6 @@
 //! What the `glint test` suites share: the binary, Chromium to load their
 //! reports, and a small scene.
+#![allow(dead_code)] // each test binary uses a different part of this module
 
 use std::path::Path;
 use std::process::{Command, Output};
