@@ -111,6 +111,7 @@ impl Machine {
     /// Everything the test suite needs, already there.
     fn complete(self) -> Self {
         let machine = self
+            .with_package("g++", "4:12.2.0-3", &["g++", "c++"])
             .with_package("mesa-vulkan-drivers", "25.0.7-2~bpo12+1", &[])
             .with_package("libvulkan1", "1.4.309.0-1~bpo12+1", &[])
             .with_package("xvfb", "2:21.1.7-3", &["xvfb-run"])
@@ -165,7 +166,8 @@ fn bookworm() -> Machine {
          main nodejs 18.20.4+dfsg-1~deb12u1\n\
          main npm 9.2.0~ds1-1\n\
          main slurm-wlm 22.05.8-4+deb12u3\n\
-         main munge 0.5.15-2\n",
+         main munge 0.5.15-2\n\
+         main g++ 4:12.2.0-3\n",
     )
 }
 
@@ -176,11 +178,11 @@ fn bookworm_with_nodesource() -> Machine {
 }
 
 #[test]
-fn a_render_on_fresh_debian_12_installs_lavapipe_from_backports_alone() {
+fn a_render_on_fresh_debian_12_installs_lavapipe_from_backports_and_a_cxx_compiler_alone() {
     let machine = bookworm_with_nodesource();
     let run = machine.setup(&[]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert_eq!(run.log, ["apt-get update", "apt-get install -t bookworm-backports mesa-vulkan-drivers libvulkan1"]);
+    assert_eq!(run.log, ["apt-get update", "apt-get install -t bookworm-backports mesa-vulkan-drivers libvulkan1", "apt-get install g++"]);
     let backports = fs::read_to_string(machine.path("root/etc/apt/sources.list.d/glint-backports.sources")).unwrap();
     assert!(backports.contains("URIs: http://mirror.example/debian") && backports.contains("Suites: bookworm-backports"), "{backports}");
     assert_eq!(machine.setup(&[]).log, Vec::<String>::new(), "a second run does nothing");
@@ -225,7 +227,7 @@ fn a_complete_machine_gets_nothing() {
 
 #[test]
 fn a_machine_with_a_gpu_driver_needs_nothing_to_render() {
-    let machine = bookworm().with_package("libvulkan1", "1.3.239.0-1", &[]);
+    let machine = bookworm().with_package("libvulkan1", "1.3.239.0-1", &[]).with_package("g++", "4:12.2.0-3", &["g++", "c++"]);
     machine.write("root/dev/dri/renderD128", "");
     machine.write("root/usr/share/vulkan/icd.d/radeon_icd.x86_64.json", "{}");
     let run = machine.setup(&[]);
@@ -244,7 +246,8 @@ fn debian_13_takes_mesa_and_node_from_its_own_suite() {
          main nodejs 20.19.2+dfsg-1\n\
          main npm 9.2.0~ds1-3\n\
          main slurm-wlm 24.11.5-4\n\
-         main munge 0.5.16-1\n",
+         main munge 0.5.16-1\n\
+         main g++ 4:14.2.0-1\n",
     );
     let run = machine.setup(&["--tests"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
@@ -269,7 +272,8 @@ fn ubuntu(version: &str, codename: &str, mesa: &str, nodejs: &str) -> Machine {
              main nodejs {nodejs}\n\
              main npm 9.2.0~ds1-2\n\
              main slurm-wlm 23.11.4-1.2u1\n\
-             main munge 0.5.15-4build1\n"
+             main munge 0.5.15-4build1\n\
+             main g++ 4:13.2.0-7ubuntu1\n"
         ),
     )
 }
@@ -298,6 +302,8 @@ fn ubuntu_is_told_what_its_archive_cannot_give() {
 fn macos_renders_on_metal_and_is_told_what_the_tests_need() {
     let machine = Machine::empty();
     machine.write("uname", "Darwin\n");
+    // Rust on macOS links with the Command Line Tools, which bring clang++.
+    machine.command("clang++", "echo Apple clang");
     let render = machine.setup(&[]);
     assert_eq!((render.code, render.log.clone()), (0, vec![]), "{}", render.stderr);
     assert!(render.says("macOS: Glint renders on Metal; nothing to install"), "{}", render.stderr);
