@@ -47,9 +47,17 @@ fn run(what: &str, command: &mut Command, limit: Duration) -> String {
     let (out, err) = (out.join().unwrap(), err.join().unwrap());
     match status {
         Some(status) if status.success() => out,
-        Some(status) => panic!("{what} failed ({status}):\n{out}\n{err}"),
-        None => panic!("{what} did not finish within {} s:\n{out}\n{err}", limit.as_secs()),
+        Some(status) => panic!("{what} failed ({status}):\n{}", without_progress(&out, &err)),
+        None => panic!("{what} did not finish within {} s:\n{}", limit.as_secs(), without_progress(&out, &err)),
     }
+}
+
+/// A failed command's output without cargo's progress lines, whose hundreds
+/// of `Compiling …` would push the error itself out of a CI log's excerpt.
+fn without_progress(out: &str, err: &str) -> String {
+    let progress = ["Compiling ", "Downloading ", "Downloaded ", "Updating ", "Locking ", "Adding ", "Checking ", "Fresh "];
+    let kept: Vec<&str> = out.lines().chain(err.lines()).filter(|l| !progress.iter().any(|p| l.trim_start().starts_with(p))).collect();
+    kept.join("\n")
 }
 
 /// The child's exit status, or `None` (and the child killed) after `limit`.
