@@ -58,6 +58,7 @@ mod tests {
             detail: format!("detail of {name}"),
             points: Some(Points { earned, possible }),
             images: None,
+            diagnosis: None,
         }
     }
 

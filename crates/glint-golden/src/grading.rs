@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use glint_gpu::{Format, Image, Renderer};
 
 use crate::case_render::{render, Rendered};
-use crate::comparison::{compare, Roles};
+use crate::comparison::{compare, Roles, DIFF_ROLE};
 use crate::criteria::Criteria;
 use crate::diagnosis::{diagnose, variants, Variant};
 use crate::image_io::{self, LinearImage};
@@ -226,6 +226,7 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, renderer: Option<&Renderer>
         detail: String::new(),
         points: Some(Points { earned: 0.0, possible: case.scoring.points }),
         images: None,
+        diagnosis: None,
     };
     let reference = match &prepared.image {
         Ok(reference) => reference,
@@ -256,8 +257,9 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, renderer: Option<&Renderer>
     let award = case.scoring.award(comparison.verdict.as_ref());
     outcome.points = Some(Points { earned: award.points, possible: case.scoring.points });
     outcome.detail = comparison.detail;
+    outcome.images = comparison.images;
     // A failing image says which band, if any, its points came from, then
-    // what it most likely got wrong.
+    // what it most likely got wrong, and its diff map shows where.
     if !passed && comparison.verdict.is_some() {
         if !case.scoring.partial.is_empty() {
             outcome.detail += &match award.band {
@@ -267,10 +269,12 @@ fn grade_one(case: &GradedCase, prepared: &Prepared, renderer: Option<&Renderer>
         }
         let variants = prepared.variants.get_or_init(|| diagnosis_variants(case, reference, renderer));
         if let Some(diagnosis) = diagnose(&submitted, format, reference.linear(format), variants) {
-            outcome.detail += &format!("; {}", diagnosis.sentence());
+            if let Some(images) = &mut outcome.images {
+                images.outline(DIFF_ROLE, diagnosis.region);
+            }
+            outcome.diagnose(diagnosis);
         }
     }
-    outcome.images = comparison.images;
     outcome
 }
 

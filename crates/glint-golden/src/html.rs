@@ -1,6 +1,7 @@
 //! The HTML report: a table of every case with its settings, then for each
 //! failing case its reference, tested image and error map side by side, and
-//! the worst region of the first two magnified. The page and its PNG images
+//! the worst region of the first two magnified. A diagnosed case says what
+//! the image most likely got wrong, and its error map outlines where. The page and its PNG images
 //! go in one directory, linked by relative names, so the directory can be
 //! kept as a CI artifact and opened anywhere.
 
@@ -9,12 +10,13 @@ use std::path::{Path, PathBuf};
 
 use crate::comparison::Png;
 use crate::markup::escape;
-use crate::runner::{Outcome, Points, Status, Summary};
+use crate::runner::{sentence_and_advice, Outcome, Points, Status, Summary};
 
 pub const STYLE: &str = "body { font-family: sans-serif; margin: 1.5em; color: #222; background: #fafafa }
 table { border-collapse: collapse; margin-bottom: 2em }
 th, td { text-align: left; padding: 0.25em 0.8em; border-bottom: 1px solid #ddd; vertical-align: top }
 .failed { color: #a00 }
+.diagnosis { font-size: 1.1em }
 .images { display: flex; flex-wrap: wrap; gap: 1.5em; align-items: flex-start; margin-bottom: 1em }
 figure { margin: 0 }
 img { image-rendering: pixelated; border: 1px solid #bbb; background: #fff }
@@ -95,7 +97,17 @@ pub fn page(title: &str, outcomes: &[Outcome]) -> String {
     }
     html.push_str("</table>\n");
     for outcome in outcomes.iter().filter(|o| o.status.failed()) {
-        let _ = write!(html, "<section id=\"{}\">\n<h2>{}</h2>\n<p class=\"failed\">{}</p>\n", anchor(outcome), escape(&outcome.name), escape(&outcome.detail));
+        let _ = write!(html, "<section id=\"{}\">\n<h2>{}</h2>\n<p class=\"failed\">{}</p>\n", anchor(outcome), escape(&outcome.name), escape(outcome.verdict()));
+        if let Some(diagnosis) = &outcome.diagnosis {
+            let (lead, advice) = sentence_and_advice(diagnosis);
+            let _ = writeln!(
+                html,
+                "<p class=\"diagnosis\">{}<strong>{}</strong>. The cyan box on the diff map marks {}.</p>",
+                escape(&lead),
+                escape(advice),
+                diagnosis.region
+            );
+        }
         let files: Vec<String> =
             outcome.files.iter().map(|(role, path)| format!("{role} <code>{}</code>", escape(&path.display().to_string()))).collect();
         let _ = writeln!(html, "<p>{}</p>", files.join(", "));
@@ -153,6 +165,7 @@ mod tests {
             detail: format!("detail of {name} <b>"),
             points: None,
             images,
+            diagnosis: None,
         }
     }
 
@@ -187,6 +200,25 @@ mod tests {
         // What made the image: the settings, in the table and in the case's section.
         assert_eq!(html.matches("view shaded, max depth 2, 1 spp, 160x120").count(), 3 + 2, "{html}");
         assert!(html.contains("<p>scene <code>bad one.toml</code>, golden <code>bad one.png</code></p>"), "{html}");
+    }
+
+    #[test]
+    fn a_diagnosed_case_says_what_is_likely_wrong_under_its_verdict() {
+        let mut diagnosed = outcome("glass", Status::Mismatch, None);
+        diagnosed.diagnose(crate::diagnosis::Diagnosis {
+            effect: crate::diagnosis::Effect::NoRefraction,
+            what: "without refracted rays".into(),
+            advice: "check your refracted rays and Snell's law",
+            flip: 0.004,
+            full_flip: 0.2,
+            region: crate::region::Region { x: 3, y: 5, width: 8, height: 8 },
+        });
+        let html = page("t", &[diagnosed]);
+        let verdict = "<p class=\"failed\">detail of glass &lt;b&gt;</p>\n";
+        let diagnosis = "<p class=\"diagnosis\">closest to Glint&#39;s render without refracted rays (flip 0.004, against 0.200 for the full render; the two differ most in 8x8 at (3, 5)): <strong>check your refracted rays and Snell&#39;s law</strong>. The cyan box on the diff map marks 8x8 at (3, 5).</p>\n";
+        assert!(html.contains(&format!("{verdict}{diagnosis}")), "{html}");
+        // The table keeps the whole detail, the sentence with it.
+        assert!(html.contains("<td>detail of glass &lt;b&gt;; closest to Glint&#39;s render without refracted rays"), "{html}");
     }
 
     #[test]

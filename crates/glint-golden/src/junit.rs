@@ -72,6 +72,7 @@ mod tests {
             detail: detail.into(),
             points: None,
             images: None,
+            diagnosis: None,
         }
     }
 

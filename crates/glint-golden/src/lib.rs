@@ -29,6 +29,7 @@ mod submission_folder;
 pub use class_report::{remove_former_students, write_class_report};
 pub use comparison::{Png, ReportImages};
 pub use criteria::{judge, number, percent, Criteria, Verdict, Worst};
+pub use diagnosis::{Diagnosis, Effect};
 pub use diff_map::diff_map;
 pub use gradescope::results_json;
 pub use grading::{grade, needs_renderer, GradedCase, Grades, Reference, Student};

@@ -72,6 +72,26 @@ pub fn magnified(image: &LinearImage, region: Region) -> image::RgbImage {
     })
 }
 
+/// Outlines are this many pixels wide, drawn inside the region.
+const OUTLINE_WIDTH: u32 = 2;
+
+/// Cyan: on FLIP's magma map (black, purple, orange, pale yellow) and on the
+/// black–red–yellow–white ramp alike, no error has this colour.
+pub const OUTLINE_COLOUR: image::Rgb<u8> = image::Rgb([0, 255, 255]);
+
+/// Draws `region`'s border on `image`, inside the region and the image.
+pub fn outline(image: &mut image::RgbImage, region: Region) {
+    let (right, bottom) = (region.x + region.width, region.y + region.height);
+    for y in region.y..bottom.min(image.height()) {
+        for x in region.x..right.min(image.width()) {
+            let border = x < region.x + OUTLINE_WIDTH || x + OUTLINE_WIDTH >= right || y < region.y + OUTLINE_WIDTH || y + OUTLINE_WIDTH >= bottom;
+            if border {
+                image.put_pixel(x, y, OUTLINE_COLOUR);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -97,6 +117,21 @@ mod tests {
     fn a_tiny_image_is_one_window() {
         assert_eq!(worst_region(&[0.0; 6], 3, 2), Region { x: 0, y: 0, width: 2, height: 2 });
         assert_eq!(window_side(1000, 800), 64);
+    }
+
+    #[test]
+    fn an_outline_is_two_pixels_inside_the_region() {
+        let mut image = image::RgbImage::new(12, 10);
+        outline(&mut image, Region { x: 2, y: 1, width: 6, height: 6 });
+        let drawn: Vec<(u32, u32)> = image.enumerate_pixels().filter(|p| *p.2 == OUTLINE_COLOUR).map(|p| (p.0, p.1)).collect();
+        // A 6 × 6 square less its 2 × 2 middle.
+        assert_eq!(drawn.len(), 36 - 4);
+        assert!(drawn.iter().all(|&(x, y)| (2..8).contains(&x) && (1..7).contains(&y)));
+        assert!(![(4, 3), (5, 3), (4, 4), (5, 4)].iter().any(|p| drawn.contains(p)));
+        // Clipped where the region runs past the image.
+        let mut corner = image::RgbImage::new(4, 4);
+        outline(&mut corner, Region { x: 2, y: 2, width: 4, height: 4 });
+        assert_eq!(corner.enumerate_pixels().filter(|p| *p.2 == OUTLINE_COLOUR).count(), 4);
     }
 
     #[test]

@@ -15,6 +15,7 @@ use glint_gpu::{Bits, Image, Renderer};
 
 use crate::case_render::Rendered;
 use crate::comparison::{compare, ReportImages, Roles};
+use crate::diagnosis::Diagnosis;
 use crate::image_io::{self, LinearImage};
 use crate::manifest::Case;
 
@@ -61,6 +62,8 @@ pub struct Outcome {
     /// Set for a graded case.
     pub points: Option<Points>,
     pub images: Option<ReportImages>,
+    /// What a failed submission most likely got wrong, set by grading.
+    pub diagnosis: Option<Diagnosis>,
 }
 
 impl Outcome {
@@ -74,7 +77,24 @@ impl Outcome {
             detail,
             points: None,
             images: None,
+            diagnosis: None,
         }
+    }
+
+    /// Sets the diagnosis, and appends its sentence to the detail, which
+    /// every text output (stdout, JUnit) shows.
+    pub fn diagnose(&mut self, diagnosis: Diagnosis) {
+        self.detail += &format!("; {}", diagnosis.sentence());
+        self.diagnosis = Some(diagnosis);
+    }
+
+    /// The detail without the diagnosis' sentence: for outputs that show the
+    /// diagnosis apart.
+    pub fn verdict(&self) -> &str {
+        self.diagnosis
+            .as_ref()
+            .and_then(|d| self.detail.strip_suffix(&format!("; {}", d.sentence())))
+            .unwrap_or(&self.detail)
     }
 
     /// The detail, then the settings and the files compared, a line each:
@@ -103,6 +123,14 @@ impl Outcome {
             Status::Mismatch | Status::NoGolden | Status::NoImage | Status::Error => "FAIL",
         }
     }
+}
+
+/// A diagnosis' sentence up to its advice, and the advice: for outputs that
+/// set the advice apart.
+pub fn sentence_and_advice(diagnosis: &Diagnosis) -> (String, &'static str) {
+    let sentence = diagnosis.sentence();
+    let lead = sentence.strip_suffix(diagnosis.advice).unwrap_or(&sentence).to_string();
+    (lead, diagnosis.advice)
 }
 
 /// Counts of a run; displayed as the closing line `N passed, N failed`.
