@@ -121,8 +121,13 @@ fn a_class_is_graded_in_one_run_with_every_report() {
     assert_eq!((&sphere["name"], &sphere["score"], &sphere["max_score"], &sphere["status"]), (&"sphere".into(), &4.0.into(), &10.0.into(), &"failed".into()));
     let output = sphere["output"].as_str().unwrap();
     assert!(output.contains(", worst region 4x4 at ("), "{output}");
-    assert!(output.contains("\nsettings: view shaded, max depth 2, 1 spp, 48x36\n"), "{output}");
-    assert!(output.contains(&format!("\nsubmission: {}", root.join("subs/bob/sphere.png").display())), "{output}");
+    assert!(output.contains("\n- settings: view shaded, max depth 2, 1 spp, 48x36\n"), "{output}");
+    assert!(output.contains(&format!("\n- submission: {}", root.join("subs/bob/sphere.png").display())), "{output}");
+    // A failure is Markdown with the images side by side; a pass plain text.
+    assert_eq!((&sphere["output_format"], bob["tests"][1].get("output_format")), (&"md".into(), None));
+    for role in ["reference", "submission", "diff"] {
+        assert!(output.contains(&format!("![{role}](data:image/png;base64,")), "{role}: {output}");
+    }
     assert_eq!(bob["tests"][1]["status"], "passed");
     assert_eq!(bob["tests"][1]["output"].as_str().unwrap().lines().nth(1), Some("settings: reference image, 48x36"));
     let cat = json(&report.join("cat/results.json"));

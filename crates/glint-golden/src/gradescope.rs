@@ -4,29 +4,53 @@
 //! its `name`, `score`, `max_score`, `status` and `output`, and the case's
 //! `visibility` where the manifest sets one
 //! (<https://gradescope-autograders.readthedocs.io/en/latest/specs/>).
+//!
+//! A failed test's `output` is Markdown (`"output_format": "md"`): the
+//! verdict, the diagnosis with its advice in bold, the settings and files,
+//! then the reference, the submission and the diff map, small, inline as
+//! data URIs, since results.json is all Gradescope keeps. A passed test's
+//! stays plain text (docs/decisions/056-gradescope-output-with-images.md).
 
 use serde_json::json;
 
 use crate::grading::{GradedCase, Grades};
 use crate::html::points_text;
-use crate::runner::Summary;
+use crate::image_io::encode_png;
+use crate::markup::escape_markdown;
+use crate::runner::{sentence_and_advice, Outcome, Summary};
+
+/// Images in a test's output are at most this wide: three side by side fit
+/// Gradescope's page.
+const IMAGE_WIDTH: u32 = 256;
+
+/// The images of one results.json take at most this many bytes of base64;
+/// a failed test whose images would pass that shows none. Gradescope
+/// documents no size limit; this keeps results.json small however many
+/// cases fail.
+const IMAGE_BUDGET: usize = 1536 * 1024;
 
 /// `grades` are one student's outcomes of `cases`, in the same order.
 pub fn results_json(suite_name: &str, cases: &[&GradedCase], grades: &Grades) -> String {
     let total = grades.total();
+    let mut budget = IMAGE_BUDGET;
     let tests: Vec<serde_json::Value> = grades
         .outcomes
         .iter()
         .zip(cases)
         .map(|(outcome, case)| {
             let points = outcome.points.expect("a graded outcome has points");
+            let failed = outcome.status.failed();
             let mut test = json!({
                 "name": outcome.name,
                 "score": points.earned,
                 "max_score": points.possible,
-                "status": if outcome.status.failed() { "failed" } else { "passed" },
+                "status": if failed { "failed" } else { "passed" },
                 "output": outcome.explanation(),
             });
+            if failed {
+                test["output"] = failed_output(outcome, &mut budget).into();
+                test["output_format"] = "md".into();
+            }
             if let Some(visibility) = case.visibility {
                 test["visibility"] = visibility.name().into();
             }
@@ -38,13 +62,71 @@ pub fn results_json(suite_name: &str, cases: &[&GradedCase], grades: &Grades) ->
     serde_json::to_string_pretty(&results).expect("JSON values always serialise") + "\n"
 }
 
+/// A failed test's output in Markdown; its images are taken from `budget`.
+fn failed_output(outcome: &Outcome, budget: &mut usize) -> String {
+    let mut md = escape_markdown(outcome.verdict());
+    if let Some(diagnosis) = &outcome.diagnosis {
+        let (lead, advice) = sentence_and_advice(diagnosis);
+        md += &format!("\n\n{}**{}**", escape_markdown(&lead), escape_markdown(advice));
+    }
+    md += "\n\n";
+    if let Some(settings) = &outcome.settings {
+        md += &format!("- settings: {}\n", escape_markdown(settings));
+    }
+    for (role, path) in &outcome.files {
+        md += &format!("- {role}: {}\n", escape_markdown(&path.display().to_string()));
+    }
+    let Some(images) = outcome.images.as_ref().filter(|i| !i.whole.is_empty()) else { return md };
+    let shown: Vec<(&str, String)> = images.whole.iter().map(|(role, png)| (*role, base64(&smaller(&png.bytes)))).collect();
+    let size: usize = shown.iter().map(|(_, data)| data.len()).sum();
+    if size > *budget {
+        return md + "\nImages left out: this page holds as many as it can.\n";
+    }
+    *budget -= size;
+    md += "\n";
+    let inline: Vec<String> = shown.iter().map(|(role, data)| format!("![{role}](data:image/png;base64,{data})")).collect();
+    md += &inline.join(" ");
+    let roles: Vec<&str> = shown.iter().map(|(role, _)| *role).collect();
+    md += &format!("\n\n{}", roles.join(", "));
+    if let Some(diagnosis) = &outcome.diagnosis {
+        md += &format!("; the cyan box on the diff marks {}", diagnosis.region);
+    }
+    md + "\n"
+}
+
+/// A PNG at most `IMAGE_WIDTH` wide, scaled down with its aspect ratio kept.
+fn smaller(png: &[u8]) -> Vec<u8> {
+    let rgb = image::load_from_memory_with_format(png, image::ImageFormat::Png).expect("a PNG this crate encoded").to_rgb8();
+    if rgb.width() <= IMAGE_WIDTH {
+        return png.to_vec();
+    }
+    let height = (u64::from(rgb.height()) * u64::from(IMAGE_WIDTH)).div_ceil(u64::from(rgb.width())) as u32;
+    encode_png(&image::imageops::resize(&rgb, IMAGE_WIDTH, height.max(1), image::imageops::FilterType::Triangle))
+}
+
+/// Standard base64 with padding (RFC 4648), as data URIs take it.
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let n = chunk.iter().enumerate().fold(0u32, |n, (i, &b)| n | u32::from(b) << (16 - 8 * i));
+        for i in 0..4 {
+            out.push(if i <= chunk.len() { char::from(ALPHABET[(n >> (18 - 6 * i) & 63) as usize]) } else { '=' });
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::comparison::{Png, ReportImages};
     use crate::criteria::Criteria;
+    use crate::diagnosis::{Diagnosis, Effect};
     use crate::grading::{Reference, Student};
     use crate::metrics::Metric;
-    use crate::runner::{Outcome, Points, Status};
+    use crate::region::Region;
+    use crate::runner::{Points, Status};
     use crate::scoring::Scoring;
     use crate::settings::Visibility;
 
@@ -74,14 +156,60 @@ mod tests {
         }
     }
 
+    fn grades(outcomes: Vec<Outcome>) -> Grades {
+        Grades { student: Student { name: "ann".into(), dir: "ann".into(), report_folder: "ann".into() }, outcomes }
+    }
+
+    fn results(cases: &[&GradedCase], grades: &Grades) -> serde_json::Value {
+        serde_json::from_str(&results_json("course", cases, grades)).unwrap()
+    }
+
+    /// A PNG of `width` × `height` pixels, each a colour of its own, so that
+    /// it compresses little.
+    fn png(width: u32, height: u32) -> Png {
+        Png::of_rgb(&image::RgbImage::from_fn(width, height, |x, y| image::Rgb([(x * 7 + y) as u8, (y * 13 + x * x) as u8, (x * y) as u8])))
+    }
+
+    fn no_shadows() -> Diagnosis {
+        Diagnosis {
+            effect: Effect::NoShadows,
+            what: "without shadow rays".into(),
+            advice: "check your shadow rays",
+            flip: 0.002,
+            full_flip: 0.155,
+            region: Region { x: 8, y: 4, width: 16, height: 16 },
+        }
+    }
+
+    /// Each image of a test's Markdown output, decoded: its alt text and image.
+    fn inline_images(output: &str) -> Vec<(String, image::RgbImage)> {
+        output
+            .split("![")
+            .skip(1)
+            .map(|part| {
+                let (alt, rest) = part.split_once("](data:image/png;base64,").unwrap();
+                let data = rest.split(')').next().unwrap();
+                (alt.to_string(), image::load_from_memory(&decode(data)).unwrap().to_rgb8())
+            })
+            .collect()
+    }
+
+    fn decode(text: &str) -> Vec<u8> {
+        let value = |c: u8| b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/".iter().position(|&a| a == c).unwrap() as u32;
+        let mut out = Vec::new();
+        for quad in text.as_bytes().chunks(4) {
+            let digits: Vec<u32> = quad.iter().filter(|&&c| c != b'=').map(|&c| value(c)).collect();
+            let n = digits.iter().enumerate().fold(0, |n, (i, d)| n | d << (18 - 6 * i));
+            out.extend((0..digits.len() - 1).map(|i| (n >> (16 - 8 * i)) as u8));
+        }
+        out
+    }
+
     #[test]
     fn the_documented_fields_are_there() {
-        let grades = Grades {
-            student: Student { name: "ann".into(), dir: "ann".into(), report_folder: "ann".into() },
-            outcomes: vec![outcome("balls", Status::Passed, 10.0, 10.0), outcome("room", Status::Mismatch, 2.5, 5.0)],
-        };
+        let grades = grades(vec![outcome("balls", Status::Passed, 10.0, 10.0), outcome("room", Status::Mismatch, 2.5, 5.0)]);
         let (balls, room) = (case("balls", None), case("room", Some(Visibility::AfterDueDate)));
-        let results: serde_json::Value = serde_json::from_str(&results_json("course", &[&balls, &room], &grades)).unwrap();
+        let results = results(&[&balls, &room], &grades);
         assert_eq!(results["score"], 12.5);
         assert_eq!(results["output"], "course: 1 passed, 1 failed; 12.5/15 points");
         let tests = results["tests"].as_array().unwrap();
@@ -90,9 +218,66 @@ mod tests {
         assert_eq!(tests[0]["status"], "passed");
         // Gradescope's default unless the case sets its own.
         assert_eq!((tests[0].get("visibility"), &tests[1]["visibility"]), (None, &json!("after_due_date")));
+        // A pass is plain text, Gradescope's default; a failure Markdown.
+        assert_eq!((tests[0].get("output_format"), &tests[1]["output_format"]), (None, &json!("md")));
+        assert_eq!(tests[0]["output"], "detail of balls\nsettings: view shaded, max depth 5, 1 spp, 48x36\nsubmission: ann/balls.png\nreference scene: balls.toml");
+        assert_eq!(tests[1]["output"], "detail of room\n\n- settings: view shaded, max depth 5, 1 spp, 48x36\n- submission: ann/room.png\n- reference scene: room.toml\n");
+    }
+
+    #[test]
+    fn a_failed_test_shows_its_diagnosis_and_images() {
+        let mut failed = outcome("shadow_s1", Status::Mismatch, 2.0, 10.0);
+        failed.detail = "flip 0.154708 > 0.01, worst region 16x16 at (8, 4); partial credit: flip <= 0.2".into();
+        failed.images = Some(ReportImages { whole: vec![("reference", png(48, 36)), ("submission", png(48, 36)), ("diff", png(200, 70))], zoomed: vec![("reference", png(192, 192))] });
+        failed.diagnose(no_shadows());
+        let case = case("shadow_s1", None);
+        let results = results(&[&case], &grades(vec![failed]));
+        let output = results["tests"][0]["output"].as_str().unwrap();
+        let paragraphs: Vec<&str> = output.split("\n\n").collect();
+        // The verdict, then the diagnosis with its advice in bold, as paragraphs of their own.
+        assert_eq!(paragraphs[0], "flip 0.154708 &gt; 0.01, worst region 16x16 at (8, 4); partial credit: flip &lt;= 0.2");
         assert_eq!(
-            tests[1]["output"],
-            "detail of room\nsettings: view shaded, max depth 5, 1 spp, 48x36\nsubmission: ann/room.png\nreference scene: room.toml"
+            paragraphs[1],
+            "closest to Glint's render without shadow rays (flip 0.002, against 0.155 for the full render; the two differ most in 16x16 at (8, 4)): **check your shadow rays**"
         );
+        assert!(paragraphs[2].starts_with("- settings: view shaded, max depth 5, 1 spp, 48x36\n- submission: ann/shadow\\_s1.png\n"), "{output}");
+        // The whole images, not the magnified ones, each as its report holds it.
+        let images = inline_images(output);
+        let roles: Vec<&str> = images.iter().map(|(role, _)| role.as_str()).collect();
+        assert_eq!(roles, ["reference", "submission", "diff"]);
+        assert_eq!(images[0].1, image::load_from_memory(&png(48, 36).bytes).unwrap().to_rgb8());
+        assert_eq!(images[2].1.dimensions(), (200, 70));
+        assert!(output.ends_with("\n\nreference, submission, diff; the cyan box on the diff marks 16x16 at (8, 4)\n"), "{output}");
+    }
+
+    #[test]
+    fn images_are_small_and_a_class_of_failures_stays_within_the_budget() {
+        let wide = || {
+            let mut o = outcome("wide", Status::Mismatch, 0.0, 10.0);
+            o.images = Some(ReportImages { whole: vec![("reference", png(640, 480)), ("submission", png(640, 480)), ("diff", png(640, 514))], zoomed: Vec::new() });
+            o
+        };
+        let cases: Vec<GradedCase> = (0..20).map(|_| case("wide", None)).collect();
+        let cases: Vec<&GradedCase> = cases.iter().collect();
+        let text = results_json("course", &cases, &grades((0..20).map(|_| wide()).collect()));
+        let results: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let outputs: Vec<&str> = results["tests"].as_array().unwrap().iter().map(|t| t["output"].as_str().unwrap()).collect();
+        let first = inline_images(outputs[0]);
+        assert_eq!(first.iter().map(|(_, i)| i.dimensions()).collect::<Vec<_>>(), [(256, 192), (256, 192), (256, 206)]);
+        // Every failure says why it fails; the images stop at the budget.
+        assert!(outputs.iter().all(|o| o.contains("\n- submission: ann/wide.png\n")));
+        let with_images = outputs.iter().filter(|o| o.contains("![")).count();
+        assert!(with_images >= 1 && with_images < 20, "{with_images}");
+        assert!(outputs[with_images..].iter().all(|o| o.ends_with("\nImages left out: this page holds as many as it can.\n")));
+        assert!(text.len() < IMAGE_BUDGET + 64 * 1024, "{} bytes", text.len());
+    }
+
+    #[test]
+    fn base64_is_rfcs() {
+        // RFC 4648's test vectors.
+        for (bytes, text) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+            assert_eq!(base64(bytes.as_bytes()), text);
+        }
+        assert_eq!(decode(&base64(&[0, 255, 254, 1])), [0, 255, 254, 1]);
     }
 }

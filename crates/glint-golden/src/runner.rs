@@ -98,7 +98,7 @@ impl Outcome {
     }
 
     /// The detail, then the settings and the files compared, a line each:
-    /// the body of a JUnit failure or of a Gradescope test's output.
+    /// the body of a JUnit failure or of a passed Gradescope test's output.
     pub fn explanation(&self) -> String {
         let mut text = self.detail.clone();
         if let Some(settings) = &self.settings {
