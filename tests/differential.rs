@@ -3,6 +3,8 @@
 //! scene model but no shading code. Every fourth scene is rendered again
 //! under the plain profile, which must give the same bits (`support`): each
 //! plain scene's kernels compile anew, and on lavapipe they compile slowly.
+//! Every fifth scene lights its back faces with unturned normals, the
+//! student's bug grading's diagnosis renders (`turn_normals` off).
 
 mod support;
 
@@ -13,6 +15,8 @@ use glint_gpu::{Acceleration, RenderOptions};
 const SEEDS: u64 = 20;
 /// The scenes the plain profile renders again: seeds 0, 4, 8, ...
 const PLAIN_EVERY: u64 = 4;
+/// The scenes rendered with unturned normals: seeds 2, 7, 12, ...
+const UNTURNED_EVERY: u64 = 5;
 /// Colour tolerance per channel (linear radiance), relative above 1.
 const TOLERANCE: f64 = 2.0 / 255.0;
 /// Pixels whose ray trees change within this many pixels of the centre are on
@@ -24,7 +28,8 @@ fn gpu_agrees_with_the_cpu_reference_on_random_scenes() {
     let mut compared = 0;
     let mut summary = Vec::new();
     for seed in 0..SEEDS {
-        let scene = glint_reference::random_scene(seed);
+        let mut scene = glint_reference::random_scene(seed);
+        scene.render.turn_normals = seed % UNTURNED_EVERY != 2;
         let (w, h) = (scene.width, scene.height);
         let reference = glint_reference::render(&scene, w, h);
         let stable = glint_reference::stability_mask(&scene, w, h, EDGE_DELTA_PX);

@@ -4,7 +4,8 @@
 //! one loop, one call of the BVH walk) trace the same rays in the same order:
 //! the same pixels and ray counts in every view, bit for bit, and the same
 //! probed trees, for every kind of primitive, plain and tinted shadows,
-//! reflection, refraction, total internal reflection and depth cueing.
+//! reflection, refraction, total internal reflection, depth cueing and the
+//! unturned normals of grading's diagnosis.
 
 mod support;
 
@@ -80,7 +81,10 @@ fn the_plain_ray_tree_traces_what_the_one_walk_traces() {
         check(&scene, name);
     }
     for seed in 0..2 {
-        check(&glint_reference::random_scene(seed), &format!("random scene {seed}"));
+        let mut scene = glint_reference::random_scene(seed);
+        check(&scene, &format!("random scene {seed}"));
+        scene.render.turn_normals = false;
+        check(&scene, &format!("random scene {seed}, normals unturned"));
     }
     let lambert = glint_scene::load(&dir.join("gallery/lambert.toml")).unwrap();
     check(&lambert, "lambert.toml, eye rays alone");

@@ -61,6 +61,7 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
                 material = prim_material(p);
                 color_at_hit = m.color;
                 note_hit(s, hit.prim);
+                s = lit_surface(s);
                 local = ambient_term(m);
             }
         }
@@ -78,7 +79,8 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
             continue;
         }
         if shading {
-            push_secondary_rays(pending, t_hit, s, shaded_material(material, color_at_hit), id, local, &color, &stack, &top);
+            // The surface turned back: secondary rays leave as the lecture's do.
+            push_secondary_rays(pending, t_hit, lit_surface(s), shaded_material(material, color_at_hit), id, local, &color, &stack, &top);
         }
         // Without secondary rays the tree is the eye ray alone, and the
         // kernel compiles without the stack (a sixth less to compile).

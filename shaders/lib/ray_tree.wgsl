@@ -50,7 +50,8 @@ fn trace_step(pending: PendingRay, stack: ptr<function, array<PendingRay, MAX_DE
 
 // local(R) at `s` seen from `v`: the ambient term, and the term of each light
 // facing the surface, through its own shadow ray.
-fn local_color(s: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
+fn local_color(surface: Surface, m: GpuMaterial, v: vec3<f32>) -> vec3<f32> {
+    let s = lit_surface(surface);
     var color = ambient_term(m);
     var light = next_lit_light(s, 0u);
     while light.index < uniforms.light_count {

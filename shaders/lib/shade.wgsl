@@ -39,6 +39,17 @@ fn specular_term(m: GpuMaterial, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> ve
     return m.ks * m.specular_color * lobe;
 }
 
+// The surface as its lighting sees it. The lecture turns both normals towards
+// the eye (surface_at); grading's diagnosis alone (HAS_UNTURNED_NORMALS)
+// renders a student's lighting with the normals the geometry gives, which lights
+// a back face from behind. Applied twice, it gives `s` back.
+fn lit_surface(s: Surface) -> Surface {
+    if HAS_UNTURNED_NORMALS && s.backface && (uniforms.flags & FLAG_UNTURNED_NORMALS) != 0u {
+        return Surface(s.point, -s.geometric, -s.shading, s.backface);
+    }
+    return s;
+}
+
 // A light as the surface point sees it: the unit direction L towards it, its
 // distance (MISS for a directional light), att and N·L.
 struct LightSample {

@@ -16,8 +16,9 @@ use glint_scene::{Projection, Scene, SpecularModel};
 use suite::{arg, glint, stderr, stdout};
 
 /// A red plastic sphere with a Phong highlight (every material Phong's, not
-/// the default Blinn-Phong) and its shadow on a floor, a
-/// mirror sphere and a glass one: every effect the diagnosis knows shows.
+/// the default Blinn-Phong) and its shadow on a floor, a mirror sphere, a
+/// glass one, and a wall whose vertices wind away from the eye: every effect
+/// the diagnosis knows shows.
 const SCENE: &str = r#"
 [image]
 width = 96
@@ -77,10 +78,20 @@ center = [1.9, 0.7, 0.8]
 radius = 0.7
 material = "glass"
 
+[material.wall]
+color = [0.5, 0.7, 0.4]
+kd = 0.8
+model = "phong"
+
 [[object]]
 type = "polygon"
 vertices = [[-8, 0, -8], [-8, 0, 8], [8, 0, 8], [8, 0, -8]]
 material = "floor"
+
+[[object]]
+type = "polygon"
+vertices = [[-8, 0, -4], [-8, 5, -4], [8, 5, -4], [8, 0, -4]]
+material = "wall"
 "#;
 
 const MANIFEST: &str = r#"
@@ -113,23 +124,22 @@ fn right(c: f64) -> u8 {
     byte(srgb(c))
 }
 
-/// The camera of a student who takes the field of view between the centres
-/// of the top and bottom rows: u_s = −r_c + 2 r_c i / (n_x − 1), written from
-/// the lecture's equations with the window's half extents r_c, t_c at the
-/// outer pixel centres.
-fn centres_camera(scene: &Scene, width: u32, height: u32) -> Vec<[f64; 3]> {
+/// The camera of a student, written from the lecture's equations: pixel
+/// (i, j)'s ray goes through u_s = −r + 2r·x, v_s = t − 2t·y on a window of
+/// half extents r = `aspect`·t and t = tan(fov/2), at (x, y) = `at(i, j)`.
+fn students_camera(scene: &Scene, width: u32, height: u32, aspect: f64, at: impl Fn(f64, f64) -> (f64, f64)) -> Vec<[f64; 3]> {
     let camera = &scene.camera;
     let Projection::Perspective { fov_y_degrees } = camera.projection else { panic!("a perspective camera") };
     let w = (camera.eye - camera.look_at).as_dvec3().normalize();
     let u = camera.up.as_dvec3().cross(w).normalize();
     let v = w.cross(u);
     let t = (f64::from(fov_y_degrees).to_radians() / 2.0).tan();
-    let r = t * f64::from(width - 1) / f64::from(height - 1);
+    let r = t * aspect;
     let mut rgb = Vec::new();
     for j in 0..height {
         for i in 0..width {
-            let us = -r + 2.0 * r * f64::from(i) / f64::from(width - 1);
-            let vs = t - 2.0 * t * f64::from(j) / f64::from(height - 1);
+            let (x, y) = at(f64::from(i), f64::from(j));
+            let (us, vs) = (-r + 2.0 * r * x, t - 2.0 * t * y);
             let dir: DVec3 = (-w + us * u + vs * v).normalize();
             rgb.push(glint_reference::trace_ray(scene, camera.eye.as_dvec3(), dir));
         }
@@ -145,6 +155,7 @@ fn each_students_bug_is_named_and_the_right_image_gets_none() {
     std::fs::write(root.join("course.toml"), MANIFEST).unwrap();
     let scene = glint_scene::load(&root.join("scene.toml")).unwrap();
     let (width, height) = (scene.width, scene.height);
+    let (w, h) = (f64::from(width), f64::from(height));
     let render = |scene: &Scene| glint_reference::render(scene, width, height).rgb;
     let with = |change: fn(&mut Scene)| {
         let mut changed = scene.clone();
@@ -163,7 +174,11 @@ fn each_students_bug_is_named_and_the_right_image_gets_none() {
         ("fay", with(|s| s.materials.iter_mut().for_each(|m| m.specular_model = SpecularModel::BlinnPhong)), right, Some("Blinn-Phong's N·H in place of Phong's")),
         ("gus", render(&scene), byte, Some("linear values written as bytes")),
         ("hal", render(&scene), |c| byte(srgb(srgb(c))), Some("sRGB encoding applied twice")),
-        ("ida", centres_camera(&scene, width, height), right, Some("field of view measured between the outer pixels' centres")),
+        // The field of view between the top and bottom rows' centres.
+        ("ida", students_camera(&scene, width, height, (w - 1.0) / (h - 1.0), |i, j| (i / (w - 1.0), j / (h - 1.0))), right, Some("field of view measured between the outer pixels' centres")),
+        // Rays through (i, j), without the + 0.5.
+        ("jon", students_camera(&scene, width, height, w / h, |i, j| (i / w, j / h)), right, Some("through its pixel's corner")),
+        ("kim", with(|s| s.render.turn_normals = false), right, Some("normals not turned towards the eye")),
     ];
     for (name, rgb, write, _) in &class {
         std::fs::create_dir_all(root.join("subs").join(name)).unwrap();

@@ -66,6 +66,7 @@ shared_constants! {
     FLAG_REFLECTIONS: u32 = 4;
     FLAG_REFRACTIONS: u32 = 8;
     FLAG_DEPTH_CUE: u32 = 16;
+    FLAG_UNTURNED_NORMALS: u32 = 32;
 
     VIEW_SHADED: u32 = View::Shaded as u32;
     VIEW_NORMAL: u32 = View::Normal as u32;
@@ -544,6 +545,9 @@ pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, 
     }
     if r.refractions {
         flags |= FLAG_REFRACTIONS;
+    }
+    if !r.turn_normals {
+        flags |= FLAG_UNTURNED_NORMALS;
     }
     let (depth_cue_color, depth_cue) = match scene.depth_cue {
         Some(d) => {

@@ -7,15 +7,16 @@
 //! triangle has vertex normals, no reflected or refracted rays when no
 //! material makes any, no refraction when none transmits, no highlight,
 //! checkerboard, light falloff, tinted shadow or depth cue when the scene has
-//! none, and, for a command that renders one view, no code
+//! none, no unturned normals unless grading's diagnosis asks for them, and,
+//! for a command that renders one view, no code
 //! of the others (each becomes a `const` in the kernel's prelude, whose dead
 //! branches the driver's compiler removes before it generates code).
 
 use glint_scene::MAX_DEPTH_LIMIT;
 
 use crate::gpu_types::{
-    GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, MATERIAL_CHECKER,
-    MATERIAL_METALLIC, PRIM_TRIANGLE,
+    GpuLight, GpuMaterial, GpuScene, SceneUniforms, View, ANY_VIEW, ATTENUATION_NONE, FLAG_DEPTH_CUE, FLAG_TINTED_SHADOWS, FLAG_UNTURNED_NORMALS,
+    MATERIAL_CHECKER, MATERIAL_METALLIC, PRIM_TRIANGLE,
 };
 use crate::primitive_kinds::{self, ALL_KINDS, KINDS};
 
@@ -42,6 +43,9 @@ pub struct Specialization {
     pub tinted_shadows: bool,
     /// The scene has depth cueing.
     pub depth_cue: bool,
+    /// Lighting takes the normals unturned (`turn_normals` off: grading's
+    /// diagnosis of a student's bug).
+    pub unturned_normals: bool,
     /// The one view every dispatch renders, or `None`: each dispatch says
     /// (the viewer's kernels, a render that writes AOVs besides its image).
     pub view: Option<View>,
@@ -63,6 +67,7 @@ impl Specialization {
         attenuation: true,
         tinted_shadows: true,
         depth_cue: true,
+        unturned_normals: true,
         view: None,
         max_depth: MAX_DEPTH_LIMIT,
     };
@@ -86,6 +91,7 @@ impl Specialization {
             attenuation: scene.lights.iter().any(fades),
             tinted_shadows: uniforms.flags & FLAG_TINTED_SHADOWS != 0,
             depth_cue: uniforms.flags & FLAG_DEPTH_CUE != 0,
+            unturned_normals: uniforms.flags & FLAG_UNTURNED_NORMALS != 0,
             view: None,
             max_depth: uniforms.max_depth.max(1),
         };
@@ -140,6 +146,7 @@ impl Specialization {
         let needs = |on: bool, flag: u32| on || uniforms.flags & flag == 0;
         needs(self.tinted_shadows, FLAG_TINTED_SHADOWS)
             && needs(self.depth_cue, FLAG_DEPTH_CUE)
+            && needs(self.unturned_normals, FLAG_UNTURNED_NORMALS)
             && uniforms.max_depth <= self.max_depth
     }
 
@@ -159,6 +166,7 @@ impl Specialization {
             ("HAS_ATTENUATION", self.attenuation),
             ("HAS_TINTED_SHADOWS", self.tinted_shadows),
             ("HAS_DEPTH_CUE", self.depth_cue),
+            ("HAS_UNTURNED_NORMALS", self.unturned_normals),
         ])
     }
 
@@ -245,6 +253,7 @@ mod tests {
             attenuation: false,
             tinted_shadows: false,
             depth_cue: false,
+            unturned_normals: false,
             view: None,
             max_depth: 1,
         };
@@ -254,7 +263,7 @@ mod tests {
         every.prims[PRIM_TRIANGLE as usize].count = 3;
         every.materials[0] = GpuMaterial { reflect: [1.0; 3], transmit: [0.5; 3], ks: 0.5, flags: MATERIAL_CHECKER, ..GpuMaterial::zeroed() };
         every.lights.push(GpuLight { attenuation: crate::gpu_types::ATTENUATION_INVERSE_SQUARE, ..GpuLight::zeroed() });
-        let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE, max_depth: MAX_DEPTH_LIMIT, ..SceneUniforms::zeroed() };
+        let uniforms = SceneUniforms { flags: FLAG_TINTED_SHADOWS | FLAG_DEPTH_CUE | FLAG_UNTURNED_NORMALS, max_depth: MAX_DEPTH_LIMIT, ..SceneUniforms::zeroed() };
         assert_eq!(Specialization::of(&every, &uniforms), Specialization::ALL);
     }
 
@@ -313,11 +322,11 @@ mod tests {
     }
 
     #[test]
-    fn tinted_shadows_and_depth_cueing_are_compiled_for_the_settings_that_turn_them_on() {
+    fn tinted_shadows_depth_cueing_and_unturned_normals_are_compiled_for_the_settings_that_turn_them_on() {
         let glass = scene(&[PRIM_SPHERE], 0.0);
         let opaque = of(&glass);
-        assert!(!opaque.tinted_shadows && !opaque.depth_cue);
-        for flag in [FLAG_TINTED_SHADOWS, FLAG_DEPTH_CUE] {
+        assert!(!opaque.tinted_shadows && !opaque.depth_cue && !opaque.unturned_normals);
+        for flag in [FLAG_TINTED_SHADOWS, FLAG_DEPTH_CUE, FLAG_UNTURNED_NORMALS] {
             let uniforms = SceneUniforms { flags: flag, ..SceneUniforms::zeroed() };
             assert!(!opaque.covers_uniforms(&uniforms) && opaque.editable().covers_uniforms(&uniforms), "{flag}");
             assert!(Specialization::of(&glass, &uniforms).covers_uniforms(&uniforms), "{flag}");

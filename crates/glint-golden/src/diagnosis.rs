@@ -15,7 +15,7 @@ use crate::case_render::{load, render_scene};
 use crate::image_io::{linear_to_srgb, srgb_to_linear, LinearImage};
 use crate::metrics::measure;
 use crate::region::{worst_region, Region};
-use crate::settings::{NffAngleName, RenderSettings};
+use crate::settings::{Bounded, NffAngleName, RenderSettings};
 
 /// A submission is put down to a variant when its FLIP against the variant
 /// is at most this fraction of its FLIP against the full render: clearly
@@ -39,10 +39,15 @@ pub enum Effect {
     /// The field of view taken between the outer pixels' edges where the
     /// scene means their centres, or the reverse.
     OtherFieldOfView,
+    /// Each pixel's ray through its top-left corner, not its centre.
+    PixelCorners,
+    /// Lighting with the normals the geometry gives, not turned towards the
+    /// eye: back faces lit from behind.
+    UnturnedNormals,
 }
 
 impl Effect {
-    pub const ALL: [Effect; 8] = [
+    pub const ALL: [Effect; 10] = [
         Effect::NoShadows,
         Effect::NoReflection,
         Effect::NoRefraction,
@@ -51,6 +56,8 @@ impl Effect {
         Effect::LinearAsSrgb,
         Effect::SrgbTwice,
         Effect::OtherFieldOfView,
+        Effect::PixelCorners,
+        Effect::UnturnedNormals,
     ];
 }
 
@@ -112,12 +119,16 @@ pub fn variants(renderer: &Renderer, scene_file: &Path, settings: &RenderSetting
     let mut variants = Vec::new();
     for effect in Effect::ALL {
         let (what, advice) = describe(effect, &scene, nff_angle);
-        let image = match changed_scene(effect, &scene, scene_file, settings, nff_angle)? {
-            Some(changed) => render_scene(renderer, &changed, scene_file, settings)?.image,
-            None => match changed_bytes(effect) {
-                Some(change) => with_display_bytes(reference, change),
-                None => continue,
-            },
+        let image = if effect == Effect::PixelCorners {
+            through_pixel_corners(renderer, &scene, scene_file, settings, reference.width, reference.height)?
+        } else {
+            match changed_scene(effect, &scene, scene_file, settings, nff_angle)? {
+                Some(changed) => render_scene(renderer, &changed, scene_file, settings)?.image,
+                None => match changed_bytes(effect) {
+                    Some(change) => with_display_bytes(reference, change),
+                    None => continue,
+                },
+            }
         };
         if image.display != reference.display {
             let region = where_it_shows(&image, reference);
@@ -172,6 +183,8 @@ fn describe(effect: Effect, scene: &Scene, nff_angle: Option<NffAngle>) -> (Stri
             Some(NffAngle::Centers) => ("with the field of view measured edge to edge (NFF's angle runs between the outer pixels' centres)", "check how your view window follows from the angle"),
             _ => ("with the field of view measured between the outer pixels' centres (it runs edge to edge)", "check how your view window follows from the field of view"),
         },
+        Effect::PixelCorners => ("with each ray through its pixel's corner, not its centre", "send pixel (i, j)'s ray through (i + 0.5, j + 0.5)"),
+        Effect::UnturnedNormals => ("with normals not turned towards the eye (back faces lit from behind)", "turn the normal towards the viewer: when N·D > 0, use −N"),
     };
     (what.to_string(), advice)
 }
@@ -213,9 +226,41 @@ fn changed_scene(effect: Effect, scene: &Scene, scene_file: &Path, settings: &Re
                 Projection::Orthographic { .. } => return Ok(None),
             },
         },
-        Effect::LinearAsSrgb | Effect::SrgbTwice => return Ok(None),
+        Effect::UnturnedNormals => changed.render.turn_normals = false,
+        Effect::LinearAsSrgb | Effect::SrgbTwice | Effect::PixelCorners => return Ok(None),
     }
     Ok(Some(changed))
+}
+
+/// Glint's render of `scene` at `width` × `height` with each pixel's ray
+/// through its top-left corner, where a student who drops the lecture's
+/// + 0.5 sends it: the pixel centres of a render one pixel wider and taller,
+/// whose window reaches half a pixel further on every side, are the corners
+/// of this one's pixels.
+fn through_pixel_corners(renderer: &Renderer, scene: &Scene, scene_file: &Path, settings: &RenderSettings, width: u32, height: u32) -> Result<Image, String> {
+    let size = RenderSettings { width: Some(Bounded(width + 1)), height: Some(Bounded(height + 1)), fit: None, ..settings.clone() };
+    let image = render_scene(renderer, &half_a_pixel_wider(scene, height), scene_file, &size)?.image;
+    Ok(top_left(&image, width, height))
+}
+
+/// `scene` with its view window half a pixel of a `rows`-row image wider on
+/// every side.
+fn half_a_pixel_wider(scene: &Scene, rows: u32) -> Scene {
+    let mut wider = scene.clone();
+    let grow = f64::from(rows + 1) / f64::from(rows);
+    match &mut wider.camera.projection {
+        Projection::Perspective { fov_y_degrees } => *fov_y_degrees = (2.0 * ((f64::from(*fov_y_degrees).to_radians() / 2.0).tan() * grow).atan()).to_degrees() as f32,
+        Projection::Orthographic { height } => *height = (f64::from(*height) * grow) as f32,
+    }
+    wider
+}
+
+/// The top-left `width` × `height` pixels of `image`.
+fn top_left(image: &Image, width: u32, height: u32) -> Image {
+    let rows = |values: &[[f32; 4]]| -> Vec<[f32; 4]> {
+        values.chunks(image.width as usize).take(height as usize).flat_map(|row| row[..width as usize].iter().copied()).collect()
+    };
+    Image { width, height, display: rows(&image.display), linear: rows(&image.linear) }
 }
 
 /// The field of view, edge to edge, of a window whose outer pixel centres
@@ -267,6 +312,30 @@ mod tests {
         // window at distance 1, a row apart, so the edges are at ±2.
         assert!((between_centres(90.0, 2) - 2.0 * 2f32.atan().to_degrees()).abs() < 1e-4);
         assert!(between_centres(40.0, 200) > 40.0 && between_centres(40.0, 200) < 40.3);
+    }
+
+    #[test]
+    fn the_wider_windows_pixel_centres_are_the_pixel_corners() {
+        let mut scene = glint_scene::toml_scene::parse("[image]\nwidth = 40\nheight = 30\n[camera]\neye = [1, 2, 5]\nlook_at = [0, 0.5, 0]\nfov = 50\n", Path::new("s.toml")).unwrap();
+        for projection in [Projection::Perspective { fov_y_degrees: 50.0 }, Projection::Orthographic { height: 3.0 }] {
+            scene.camera.projection = projection;
+            let wider = half_a_pixel_wider(&scene, 30);
+            for (i, j) in [(0, 0), (39, 0), (17, 29), (39, 29)] {
+                let corner = scene.camera.ray(40, 30, f64::from(i), f64::from(j)).unwrap();
+                let centre = wider.camera.ray(41, 31, f64::from(i) + 0.5, f64::from(j) + 0.5).unwrap();
+                assert!(corner.origin.distance(centre.origin) < 1e-5 && corner.direction.distance(centre.direction) < 1e-6, "{projection:?} ({i}, {j})");
+            }
+        }
+    }
+
+    #[test]
+    fn the_corner_window_is_the_top_left_of_a_wider_one() {
+        let pixels = |w: u32, h: u32| (0..w * h).map(|i| [i as f32, 0.0, 0.0, 1.0]).collect::<Vec<_>>();
+        let image = Image { width: 4, height: 3, display: pixels(4, 3), linear: pixels(4, 3) };
+        let corner = top_left(&image, 3, 2);
+        assert_eq!((corner.width, corner.height), (3, 2));
+        assert_eq!(corner.display.iter().map(|p| p[0]).collect::<Vec<_>>(), [0.0, 1.0, 2.0, 4.0, 5.0, 6.0]);
+        assert_eq!(corner.linear, corner.display);
     }
 
     #[test]

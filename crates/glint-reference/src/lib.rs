@@ -250,7 +250,11 @@ impl<'a> Tracer<'a> {
         let mut color = f64::from(m.ambient) * d3(self.scene.ambient) * od;
         rec.observer.ambient(color);
         let v = -d;
-        let (ns, ng, p) = (hit.shading, hit.geometric, hit.point);
+        // With `turn_normals` off (a student's bug the grading diagnoses), a
+        // back face is lit with the normals its geometry gives.
+        let unturned = hit.backface && !self.scene.render.turn_normals;
+        let (ns, ng) = if unturned { (-hit.shading, -hit.geometric) } else { (hit.shading, hit.geometric) };
+        let p = hit.point;
         for (li, light) in self.lights.iter().enumerate() {
             let (l, distance, att) = match light.geom {
                 LightGeom::Point(pos) => {

@@ -215,6 +215,7 @@ pub fn random_scene(seed: u64) -> Scene {
         shadow_mode: if rng.chance(0.4) { ShadowMode::Tinted } else { ShadowMode::Opaque },
         reflections: rng.chance(0.9),
         refractions: rng.chance(0.9),
+        turn_normals: true,
     };
 
     Scene {

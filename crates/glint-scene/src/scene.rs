@@ -72,6 +72,10 @@ pub struct RenderSettings {
     pub shadow_mode: ShadowMode,
     pub reflections: bool,
     pub refractions: bool,
+    /// Normals turned towards the eye before lighting, as the lecture says.
+    /// Off only in grading's diagnosis, which renders a student's lighting
+    /// with the normals as the geometry gives them; no scene file sets it.
+    pub turn_normals: bool,
 }
 
 /// The largest image side Glint accepts, in pixels, whatever the scene's format.
@@ -95,6 +99,7 @@ impl Default for RenderSettings {
             shadow_mode: ShadowMode::Opaque,
             reflections: true,
             refractions: true,
+            turn_normals: true,
         }
     }
 }

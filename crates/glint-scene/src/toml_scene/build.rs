@@ -222,6 +222,7 @@ impl Builder<'_> {
             shadow_mode,
             reflections: def.reflections.unwrap_or(d.reflections),
             refractions: def.refractions.unwrap_or(d.refractions),
+            ..d
         })
     }
 
