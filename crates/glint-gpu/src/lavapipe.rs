@@ -250,6 +250,23 @@ giving wrong pixels; install Mesa 25 or newer (`bash .ci/setup`)"
     }
 }
 
+impl Workload {
+    /// Whether lavapipe should compile this work's kernels without LLVM's
+    /// optimisation passes: a first viewing, or a small render of a scene not
+    /// rendered before (docs/decisions/030-quick-kernels.md, 047). A scene
+    /// rendered before is likely rendered again, and with optimised kernels
+    /// Mesa's cache then holds the kernels that run fastest.
+    pub(crate) fn quick_kernels(&self) -> bool {
+        !self.rendered_before && (self.interactive || self.samples.is_some_and(|s| s <= QUICK_COMPILE_MAX_SAMPLES))
+    }
+
+    /// The samples that choose lavapipe's SIMD width (`lavapipe::width_for`):
+    /// a viewer's open-ended frames never choose the long renders' width.
+    pub(crate) fn samples_for_width(&self) -> u64 {
+        if self.interactive { 0 } else { self.samples.unwrap_or(u64::MAX) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -330,5 +347,25 @@ mod tests {
         assert!(old_lavapipe_warning(&info).is_some());
         info.driver_info = "Mesa 25.0.7 (LLVM 19.1.7)".into();
         assert!(old_lavapipe_warning(&info).is_none());
+    }
+
+    #[test]
+    fn quick_kernels_only_for_first_viewings_and_small_renders_of_new_scenes() {
+        assert!(Workload::render(512 * 512, 512 * 512, false).quick_kernels());
+        assert!(Workload::render(1, QUICK_COMPILE_MAX_SAMPLES, false).quick_kernels());
+        assert!(!Workload::render(1, QUICK_COMPILE_MAX_SAMPLES + 1, false).quick_kernels());
+        assert!(!Workload::render(64 * 64, 64 * 64, true).quick_kernels());
+        assert!(Workload::interactive(false).quick_kernels() && !Workload::interactive(true).quick_kernels());
+        assert!(!Workload::REPEATED_FRAMES.quick_kernels() && !Workload::UNDESCRIBED.quick_kernels());
+    }
+
+    #[test]
+    fn the_long_renders_width_for_long_renders_and_repeated_frames_alone() {
+        let width = |w: Workload| width_for(w.samples_for_width(), w.quick_kernels());
+        assert_eq!(width(Workload::render(1, LONG_RENDER_MIN_SAMPLES, true)), width_for(u64::MAX, false));
+        assert_eq!(width(Workload::REPEATED_FRAMES), width_for(LONG_RENDER_MIN_SAMPLES, false), "a benchmark times a long render's kernels");
+        assert_eq!(width(Workload::render(1, LONG_RENDER_MIN_SAMPLES - 1, true)), LAVAPIPE_WIDTH);
+        assert_eq!(width(Workload::interactive(true)), LAVAPIPE_WIDTH, "a viewer's frames are open-ended");
+        assert_eq!(width(Workload::UNDESCRIBED), LAVAPIPE_WIDTH);
     }
 }

@@ -15,6 +15,7 @@ mod error_scope;
 pub mod display;
 mod eye_tiles;
 mod frame;
+mod kernel;
 pub mod interactive;
 pub mod kernel_dump;
 pub mod lavapipe;
@@ -72,6 +73,18 @@ pub enum GpuError {
     Output(String),
     #[error("the scene cannot be rendered: {0}")]
     Invalid(#[from] glint_scene::validate::Invalid),
+}
+
+/// An error and its causes on one line (wgpu's own display spans several).
+pub(crate) fn one_line(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 impl From<glint_image::ImageError> for GpuError {

@@ -12,7 +12,7 @@ use std::sync::Mutex;
 use glint_encoding::specialization::Specialization;
 
 use crate::error_scope::ErrorScope;
-use crate::renderer::one_line;
+use crate::one_line;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tuning::Tuning;
 use crate::GpuError;

@@ -232,6 +232,18 @@ fn is_lavapipe(info: &wgpu::AdapterInfo) -> bool {
     info.name.contains("llvmpipe")
 }
 
+impl Workload {
+    /// Readies the driver for this work before the process's first device is
+    /// made (the viewer's, which eframe makes; `Gpu::for_workload` calls it
+    /// for its own): checks `GLINT_PROFILE`, and asks lavapipe for the kernels
+    /// that serve the work best. Only the first call chooses.
+    pub fn prepare_driver(&self) -> Result<(), GpuError> {
+        ProfileName::forced()?;
+        lavapipe::prepare(self);
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;

@@ -21,7 +21,7 @@ use crate::profile::DeviceProfile;
 use crate::shaders::{Kernel, SceneArrays, ShaderSource};
 use crate::tuning::Tuning;
 use crate::workload::Workload;
-use crate::{display, GpuError, Image, Readback, Region};
+use crate::{display, one_line, GpuError, Image, Readback, Region};
 
 /// How linear radiance becomes a display value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -739,14 +739,3 @@ fn scene_bind_group_layout(device: &wgpu::Device, arrays: SceneArrays) -> wgpu::
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
 }
 
-/// An error and its causes on one line (wgpu's own display spans several).
-pub(crate) fn one_line(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut source = e.source();
-    while let Some(cause) = source {
-        text.push_str(": ");
-        text.push_str(&cause.to_string());
-        source = cause.source();
-    }
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
-}

@@ -20,71 +20,14 @@ use std::path::{Path, PathBuf};
 
 use glint_encoding::specialization::Specialization;
 
+pub use crate::kernel::Kernel;
 use crate::primitive_dispatch;
+pub use crate::tuning::SceneArrays;
 use crate::tuning::Tuning;
 use crate::GpuError;
 
 // `SOURCES` and `EMBEDDED`: every file under `shaders/`, listed by build.rs.
 include!(concat!(env!("OUT_DIR"), "/shader_files.rs"));
-
-/// The kernels, each one file of `shaders/kernels/` with one entry point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Kernel {
-    /// The full Whitted render.
-    Trace,
-    /// The eye ray's hit alone: the data views, AOVs, picking.
-    Primary,
-    /// The diffuse debug view: the eye ray's hit and its shadow rays.
-    Diffuse,
-    /// Accumulated samples to display values, for read-back.
-    Resolve,
-    /// The same, into the viewer's texture.
-    Present,
-    /// One pixel's ray tree, recorded.
-    Probe,
-}
-
-impl Kernel {
-    pub const ALL: [Kernel; 6] =
-        [Kernel::Trace, Kernel::Primary, Kernel::Diffuse, Kernel::Resolve, Kernel::Present, Kernel::Probe];
-
-    pub fn file(self) -> &'static str {
-        match self {
-            Kernel::Trace => "kernels/trace.wgsl",
-            Kernel::Primary => "kernels/primary.wgsl",
-            Kernel::Diffuse => "kernels/diffuse.wgsl",
-            Kernel::Resolve => "kernels/resolve.wgsl",
-            Kernel::Present => "kernels/present.wgsl",
-            Kernel::Probe => "kernels/probe.wgsl",
-        }
-    }
-
-    /// Whether the kernel intersects primitives, so that its code depends on
-    /// the `Specialization` it is composed for (tests/wgsl.rs checks this
-    /// against the files it is made of).
-    pub fn is_specialised(self) -> bool {
-        matches!(self, Kernel::Trace | Kernel::Primary | Kernel::Diffuse | Kernel::Probe)
-    }
-
-    /// What this kernel is compiled for when a scene's kernels are
-    /// specialised to `specialization`: only what changes its code, so that
-    /// its renders share one pipeline whatever else differs (its tuning:
-    /// `Tuning::for_kernel`).
-    pub fn compiled_for(self, specialization: Specialization) -> Specialization {
-        if self.is_specialised() { specialization } else { Specialization::ALL }
-    }
-
-    pub fn entry_point(self) -> &'static str {
-        match self {
-            Kernel::Trace => "trace_main",
-            Kernel::Primary => "primary_main",
-            Kernel::Diffuse => "diffuse_main",
-            Kernel::Resolve => "resolve_main",
-            Kernel::Present => "present_main",
-            Kernel::Probe => "probe_main",
-        }
-    }
-}
 
 /// The files `source` imports, as paths relative to `shaders/`: a name
 /// without a folder is in `lib/`. A file that asks for generated dispatch
@@ -207,28 +150,6 @@ impl Composed {
             })?;
         Ok(module)
     }
-}
-
-/// How the kernels read the scene's arrays (primitives, BVH records and
-/// grids, polygon points): `prim_at` and its siblings, declared alike by
-/// shaders/lib/scene_arrays.wgsl and bvh_records.wgsl, or the textures of
-/// shaders/fast/, over the same bindings. A renderer reads one way (its bind
-/// group layout holds that kind of binding).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum SceneArrays {
-    /// Storage buffers: what optimised kernels read fastest. lavapipe fetches
-    /// a texel through a call, around which an optimised kernel saves and
-    /// restores its registers (docs/decisions/034-scene-textures.md).
-    Buffers,
-    /// Textures, for kernels compiled without LLVM's optimisation passes (a
-    /// first, small render on lavapipe): those keep every value in memory
-    /// anyway, and a texel costs them no per-lane bounds branch, as each
-    /// component of a storage buffer's load does.
-    Textures,
-}
-
-impl SceneArrays {
-    pub const ALL: [SceneArrays; 2] = [SceneArrays::Buffers, SceneArrays::Textures];
 }
 
 impl ShaderSource {

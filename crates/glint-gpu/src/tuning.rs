@@ -7,7 +7,7 @@
 
 use glint_encoding::gpu_types::{GpuScene, UNIFORM_TREE_RECORDS};
 
-use crate::shaders::{Kernel, SceneArrays};
+use crate::kernel::Kernel;
 
 /// Its choices are glint-gpu's alone to make, from the device's profile and
 /// the work a front end describes: outside the crate they can be read, never
@@ -317,6 +317,28 @@ impl std::fmt::Display for Tuning {
             (true, true) => "eye tiles",
         })
     }
+}
+
+/// How the kernels read the scene's arrays (primitives, BVH records and
+/// grids, polygon points): `prim_at` and its siblings, declared alike by
+/// shaders/lib/scene_arrays.wgsl and bvh_records.wgsl, or the textures of
+/// shaders/fast/, over the same bindings. A renderer reads one way (its bind
+/// group layout holds that kind of binding).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SceneArrays {
+    /// Storage buffers: what optimised kernels read fastest. lavapipe fetches
+    /// a texel through a call, around which an optimised kernel saves and
+    /// restores its registers (docs/decisions/034-scene-textures.md).
+    Buffers,
+    /// Textures, for kernels compiled without LLVM's optimisation passes (a
+    /// first, small render on lavapipe): those keep every value in memory
+    /// anyway, and a texel costs them no per-lane bounds branch, as each
+    /// component of a storage buffer's load does.
+    Textures,
+}
+
+impl SceneArrays {
+    pub const ALL: [SceneArrays; 2] = [SceneArrays::Buffers, SceneArrays::Textures];
 }
 
 #[cfg(test)]

@@ -4,10 +4,6 @@
 //! (lavapipe.rs) and the kernels' tuning (`DeviceProfile::tuning`); no front
 //! end chooses either.
 
-use crate::lavapipe::{self, QUICK_COMPILE_MAX_SAMPLES};
-use crate::profile::ProfileName;
-use crate::GpuError;
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Workload {
     /// Pixel samples in all (pixels × samples per pixel × images); `None`:
@@ -44,31 +40,6 @@ impl Workload {
     /// profile traces them.
     pub(crate) const UNDESCRIBED: Workload = Workload { samples: Some(0), eye_rays: None, interactive: false, rendered_before: true };
 
-    /// Readies the driver for this work before the process's first device is
-    /// made (the viewer's, which eframe makes; `Gpu::for_workload` calls it
-    /// for its own): checks `GLINT_PROFILE`, and asks lavapipe for the kernels
-    /// that serve the work best. Only the first call chooses.
-    pub fn prepare_driver(&self) -> Result<(), GpuError> {
-        ProfileName::forced()?;
-        lavapipe::prepare(self);
-        Ok(())
-    }
-
-    /// Whether lavapipe should compile this work's kernels without LLVM's
-    /// optimisation passes: a first viewing, or a small render of a scene not
-    /// rendered before (docs/decisions/030-quick-kernels.md, 047). A scene
-    /// rendered before is likely rendered again, and with optimised kernels
-    /// Mesa's cache then holds the kernels that run fastest.
-    pub(crate) fn quick_kernels(&self) -> bool {
-        !self.rendered_before && (self.interactive || self.samples.is_some_and(|s| s <= QUICK_COMPILE_MAX_SAMPLES))
-    }
-
-    /// The samples that choose lavapipe's SIMD width (`lavapipe::width_for`):
-    /// a viewer's open-ended frames never choose the long renders' width.
-    pub(crate) fn samples_for_width(&self) -> u64 {
-        if self.interactive { 0 } else { self.samples.unwrap_or(u64::MAX) }
-    }
-
     /// Whether the primary kernel's packets, on a profile that traces them
     /// from `packet_eye_rays` eye rays on, repay their compile for this work.
     pub(crate) fn traces_packets(&self, packet_eye_rays: u64) -> bool {
@@ -79,27 +50,6 @@ impl Workload {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lavapipe::{width_for, LAVAPIPE_WIDTH, LONG_RENDER_MIN_SAMPLES};
-
-    #[test]
-    fn quick_kernels_only_for_first_viewings_and_small_renders_of_new_scenes() {
-        assert!(Workload::render(512 * 512, 512 * 512, false).quick_kernels());
-        assert!(Workload::render(1, QUICK_COMPILE_MAX_SAMPLES, false).quick_kernels());
-        assert!(!Workload::render(1, QUICK_COMPILE_MAX_SAMPLES + 1, false).quick_kernels());
-        assert!(!Workload::render(64 * 64, 64 * 64, true).quick_kernels());
-        assert!(Workload::interactive(false).quick_kernels() && !Workload::interactive(true).quick_kernels());
-        assert!(!Workload::REPEATED_FRAMES.quick_kernels() && !Workload::UNDESCRIBED.quick_kernels());
-    }
-
-    #[test]
-    fn the_long_renders_width_for_long_renders_and_repeated_frames_alone() {
-        let width = |w: Workload| width_for(w.samples_for_width(), w.quick_kernels());
-        assert_eq!(width(Workload::render(1, LONG_RENDER_MIN_SAMPLES, true)), width_for(u64::MAX, false));
-        assert_eq!(width(Workload::REPEATED_FRAMES), width_for(LONG_RENDER_MIN_SAMPLES, false), "a benchmark times a long render's kernels");
-        assert_eq!(width(Workload::render(1, LONG_RENDER_MIN_SAMPLES - 1, true)), LAVAPIPE_WIDTH);
-        assert_eq!(width(Workload::interactive(true)), LAVAPIPE_WIDTH, "a viewer's frames are open-ended");
-        assert_eq!(width(Workload::UNDESCRIBED), LAVAPIPE_WIDTH);
-    }
 
     #[test]
     fn packets_where_they_repay_their_compile() {

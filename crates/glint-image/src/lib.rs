@@ -11,12 +11,12 @@ mod sink;
 pub mod stitch;
 
 pub use output::{
-    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, write_image, write_image_channels, Bits, Channels, Format,
-    Image, OutputPathError, Samples,
+    check_output_path, read_exr_channels, read_pfm, read_pfm_channels, write_atomically, Bits, Channels, Format, Image, OutputPathError, PpmForm,
+    Samples,
 };
-pub use ppm::{read_ppm, Ppm, PpmForm};
+pub use ppm::{read_ppm, Ppm};
 pub use region::Region;
-pub use sink::{ImageSink, StagedImage};
+pub use sink::{write_image, write_image_channels, ImageSink, StagedImage};
 
 /// What can go wrong with an image file, one line each.
 #[derive(Debug, thiserror::Error)]

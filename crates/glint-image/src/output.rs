@@ -3,8 +3,6 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::ppm::PpmForm;
-use crate::sink::ImageSink;
 use crate::ImageError;
 
 /// A rendered image, row 0 at the top.
@@ -134,6 +132,16 @@ impl From<Bits> for Samples {
     }
 }
 
+/// How a PPM stores its samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PpmForm {
+    /// `P6`: one or two bytes a sample.
+    #[default]
+    Raw,
+    /// `P3`: decimal text, as Netpbm's `-plain` writes it.
+    Plain,
+}
+
 /// What an image's linear values are, which decides how many channels a
 /// float file gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -145,20 +153,6 @@ pub enum Channels {
     /// linear channel: a greyscale PFM (`Pf`), and an EXR with the one
     /// channel named here. PNG and PPM output are unaffected.
     Single(&'static str),
-}
-
-/// Writes `image` to `path` in the format its extension names, atomically
-/// (see [`ImageSink`]).
-pub fn write_image(image: &Image, path: &Path, bits: Bits) -> Result<(), ImageError> {
-    write_image_channels(image, path, bits.into(), Channels::Rgb)
-}
-
-/// [`write_image`], with display formats written with `samples` and float
-/// formats with `channels`.
-pub fn write_image_channels(image: &Image, path: &Path, samples: Samples, channels: Channels) -> Result<(), ImageError> {
-    let mut sink = ImageSink::create(path, image.width, image.height, samples, channels)?;
-    sink.paste(image, 0, 0)?;
-    sink.finish()?.commit()
 }
 
 /// Checks, before any work, that an image can be written to `path`: its

@@ -12,21 +12,11 @@
 
 use std::io::Write;
 
-use crate::output::Bits;
+use crate::output::{Bits, PpmForm};
 
 /// The most pixels a file may claim, so that a header cannot ask for more
 /// memory than any image Glint renders needs (`MAX_IMAGE_SIDE` squared).
 const MAX_PIXELS: usize = (glint_scene::MAX_IMAGE_SIDE as usize) * (glint_scene::MAX_IMAGE_SIDE as usize);
-
-/// How a PPM stores its samples.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum PpmForm {
-    /// `P6`: one or two bytes a sample.
-    #[default]
-    Raw,
-    /// `P3`: decimal text, as Netpbm's `-plain` writes it.
-    Plain,
-}
 
 /// A PPM read: its samples, R, G and B for each pixel, rows from the top.
 #[derive(Debug, Clone, PartialEq)]

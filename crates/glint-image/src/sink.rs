@@ -15,8 +15,8 @@ use std::sync::{Arc, Mutex};
 
 use tempfile::TempPath;
 
-use crate::output::{temp_beside, to_u16, to_u8, Bits, Channels, Format, Image, Samples};
-use crate::ppm::{self, PpmForm};
+use crate::output::{temp_beside, to_u16, to_u8, Bits, Channels, Format, Image, PpmForm, Samples};
+use crate::ppm;
 use crate::ImageError;
 
 /// An image file of `width` × `height` being written, tile by tile.
@@ -315,6 +315,20 @@ fn write_pfm(values: &[f32], channels: Channels, width: u32, height: u32, w: &mu
         }
     }
     Ok(())
+}
+
+/// Writes `image` to `path` in the format its extension names, atomically
+/// (see [`ImageSink`]).
+pub fn write_image(image: &Image, path: &Path, bits: Bits) -> Result<(), ImageError> {
+    write_image_channels(image, path, bits.into(), Channels::Rgb)
+}
+
+/// [`write_image`], with display formats written with `samples` and float
+/// formats with `channels`.
+pub fn write_image_channels(image: &Image, path: &Path, samples: Samples, channels: Channels) -> Result<(), ImageError> {
+    let mut sink = ImageSink::create(path, image.width, image.height, samples, channels)?;
+    sink.paste(image, 0, 0)?;
+    sink.finish()?.commit()
 }
 
 #[cfg(test)]

@@ -325,21 +325,4 @@ mod tests {
         let (from, to) = (o.start.eye - o.center, quarter.eye - o.center);
         assert!((to - Vec3::new(from.z, from.y, -from.x)).length() < 1e-5, "{to}");
     }
-
-    #[test]
-    fn posing_depends_on_the_frame_alone() {
-        let mut scene = crate::toml_scene::parse(
-            "[image]\nwidth = 8\nheight = 8\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 40\n[[light]]\ntype = \"point\"\nposition = [0, 3, 0]\n[animation]\nframes = 10\norbit = { center = [0, 0, 0] }\n[[animation.light]]\nlight = 0\nframe = 0\nposition = [1, 1, 1]\n[[animation.light]]\nlight = 0\nframe = 9\nposition = [5, 1, 1]\n",
-            std::path::Path::new("a.toml"),
-        )
-        .unwrap();
-        let mut alone = scene.clone();
-        alone.set_frame(7);
-        for n in [3, 9, 0, 7] {
-            scene.set_frame(n);
-        }
-        assert_eq!(scene, alone);
-        let LightKind::Point { position } = scene.lights[0].kind else { panic!("a point light") };
-        assert!((position - Vec3::new(1.0 + 4.0 * 7.0 / 9.0, 1.0, 1.0)).length() < 1e-6, "{position}");
-    }
 }

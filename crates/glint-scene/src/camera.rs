@@ -42,6 +42,13 @@ pub struct Ray {
     pub direction: DVec3,
 }
 
+/// A field of view of at most π "degrees" was probably written in radians.
+pub(crate) fn radians_warning(key: &str, degrees: f32) -> Option<String> {
+    (degrees > 0.0 && degrees <= std::f32::consts::PI).then(|| {
+        format!("{key}: {degrees}° is a very narrow view; angles are in degrees ({degrees} radians is {:.1})", degrees.to_degrees())
+    })
+}
+
 impl Camera {
     /// The basis, or `None` when `up` is parallel to the view direction or the
     /// eye sits on the look-at point.

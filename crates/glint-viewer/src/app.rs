@@ -18,6 +18,7 @@ use crate::first_image::FirstImageWatch;
 use crate::image::TracedImage;
 use crate::inspector::Inspector;
 use crate::jobs::{Job, Jobs};
+use crate::one_line;
 use crate::selection::Selection;
 use crate::settings::Settings;
 use crate::shaders::Shaders;
@@ -43,11 +44,6 @@ impl ViewerOptions {
         let shaders = if dir.is_dir() { ShaderSource::Dir(dir) } else { ShaderSource::Embedded };
         Self { scene, shaders, scene_text: None, first_image: None }
     }
-}
-
-/// An error message on one line.
-pub(crate) fn one_line(message: impl std::fmt::Display) -> String {
-    message.to_string().split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// Error from starting the viewer.

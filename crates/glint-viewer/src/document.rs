@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use glint_scene::{Camera, DepthCue, Light, Material, Projection, Scene};
 
-use crate::app::one_line;
+use crate::one_line;
 use crate::camera_control;
 use crate::jobs::{Job, Jobs};
 use crate::settings::SpecularChoice;

@@ -62,6 +62,14 @@ fn specialise(prepared: &mut Prepared, view: View) {
     *specialization = specialization.for_views(&[view]);
 }
 
+/// What a canvas was made for; a canvas whose key differs is out of date.
+#[derive(Clone, PartialEq)]
+pub(crate) struct CanvasKey {
+    pub(crate) kernels: usize,
+    pub(crate) scene_generation: u64,
+    pub(crate) size: (u32, u32),
+}
+
 /// A scene on the device at one image size, with the texture its image goes to.
 pub struct Canvas {
     pub kernels: Arc<Kernels>,

@@ -9,7 +9,7 @@ use egui::Pos2;
 use glint_gpu::{Image, Readback};
 use glint_scene::{Camera, LightKind};
 
-use crate::app::one_line;
+use crate::one_line;
 use crate::ViewerApp;
 
 impl ViewerApp {

@@ -15,19 +15,11 @@ use glint_gpu::schedule::BandScheduler;
 use glint_gpu::{Bits, GpuError, Readback};
 use glint_scene::Camera;
 
-use crate::app::one_line;
+use crate::one_line;
 use crate::document::LoadedScene;
-use crate::engine::{Accumulation, Canvas, Completions, Kernels, Step};
+use crate::engine::{Accumulation, Canvas, CanvasKey, Completions, Kernels, Step};
 use crate::jobs::{Job, Jobs};
 use crate::settings::Settings;
-
-/// What a canvas was made for; a canvas whose key differs is out of date.
-#[derive(Clone, PartialEq)]
-pub(crate) struct CanvasKey {
-    kernels: usize,
-    scene_generation: u64,
-    size: (u32, u32),
-}
 
 pub(crate) struct TracedImage {
     device: wgpu::Device,

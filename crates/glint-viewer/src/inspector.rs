@@ -20,7 +20,7 @@ use glint_gpu::{GpuError, Readback, RenderOptions};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, MAX_DEPTH_LIMIT};
 
-use crate::app::one_line;
+use crate::one_line;
 use crate::document::LoadedScene;
 use crate::engine::Kernels;
 use crate::image::TracedImage;

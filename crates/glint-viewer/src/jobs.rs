@@ -12,8 +12,7 @@ use glint_scene::{LoadError, Scene};
 
 use std::sync::Arc;
 
-use crate::engine::{Canvas, Kernels};
-use crate::image::CanvasKey;
+use crate::engine::{Canvas, CanvasKey, Kernels};
 
 /// A finished background job.
 pub(crate) enum Job {

@@ -103,7 +103,7 @@ pub fn run_scene(scene: Scene, first_image: Option<FirstImageWatch>) -> Result<(
 or under `xvfb-run glint view`",
             without_source_paths(&e.to_string()).trim_start_matches("os error").trim()
         )),
-        e => RunError::Failed(StartError(without_source_paths(&app::one_line(e)))),
+        e => RunError::Failed(StartError(without_source_paths(&one_line(e)))),
     })
 }
 
@@ -127,6 +127,11 @@ fn without_source_paths(message: &str) -> String {
         i += 1;
     }
     kept.join(" ")
+}
+
+/// An error message on one line.
+pub(crate) fn one_line(message: impl std::fmt::Display) -> String {
+    message.to_string().split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 #[cfg(all(test, not(target_arch = "wasm32")))]

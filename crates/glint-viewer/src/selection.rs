@@ -7,7 +7,7 @@ use egui::{Color32, Pos2, Rect, Stroke, StrokeKind};
 use glam::Vec3;
 use glint_scene::{LightKind, Scene};
 
-use crate::app::one_line;
+use crate::one_line;
 use crate::document::LoadedScene;
 use crate::image::TracedImage;
 

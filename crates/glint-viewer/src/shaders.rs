@@ -7,7 +7,7 @@ use std::sync::Arc;
 use glint_gpu::shaders::{ShaderSource, SOURCES};
 use glint_gpu::GpuError;
 
-use crate::app::one_line;
+use crate::one_line;
 use crate::engine::Kernels;
 use crate::jobs::{Job, Jobs};
 use crate::warm_up::WarmUp;

@@ -191,7 +191,7 @@ impl<'a> Parser<'a> {
                         let tok = self.cursor.tokens[self.cursor.pos - 1];
                         return Err(self.error(&tok, format!("angle: {a} is not between 0 and 180 degrees")));
                     }
-                    if let Some(warning) = crate::toml_scene::radians_warning("angle", a) {
+                    if let Some(warning) = crate::camera::radians_warning("angle", a) {
                         let tok = self.cursor.tokens[self.cursor.pos - 1];
                         self.warn(&tok, warning);
                     }

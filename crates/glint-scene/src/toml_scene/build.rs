@@ -13,7 +13,7 @@ use toml::Spanned;
 use super::{colour_warning, looks_like_0_to_255, short_vector as vector};
 use super::defs::{CameraDef, CheckerDef, DepthCueDef, FileDef, ImageDef, LightDef, MaterialDef, RenderDef};
 use super::mesh::Meshes;
-use super::radians_warning;
+use crate::camera::radians_warning;
 use super::values::{Num, Rgb};
 use crate::scene::{MAX_DEPTH_LIMIT, MAX_IMAGE_SIDE};
 use crate::{

@@ -92,13 +92,6 @@ fn schema_fields(path: &[&str]) -> Option<&'static [&'static str]> {
     })
 }
 
-/// A field of view of at most π "degrees" was probably written in radians.
-pub(crate) fn radians_warning(key: &str, degrees: f32) -> Option<String> {
-    (degrees > 0.0 && degrees <= std::f32::consts::PI).then(|| {
-        format!("{key}: {degrees}° is a very narrow view; angles are in degrees ({degrees} radians is {:.1})", degrees.to_degrees())
-    })
-}
-
 /// A number in at most two decimals, as messages show one: `0.5`, `-1`
 /// (and `0`, never `-0`).
 fn short_number(v: f32) -> String {
