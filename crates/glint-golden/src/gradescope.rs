@@ -13,6 +13,7 @@
 
 use serde_json::json;
 
+use crate::comparison::Png;
 use crate::grading::{GradedCase, Grades};
 use crate::html::points_text;
 use crate::image_io::encode_png;
@@ -77,7 +78,7 @@ fn failed_output(outcome: &Outcome, budget: &mut usize) -> String {
         md += &format!("- {role}: {}\n", escape_markdown(&path.display().to_string()));
     }
     let Some(images) = outcome.images.as_ref().filter(|i| !i.whole.is_empty()) else { return md };
-    let shown: Vec<(&str, String)> = images.whole.iter().map(|(role, png)| (*role, base64(&smaller(&png.bytes)))).collect();
+    let shown: Vec<(&str, String)> = images.whole.iter().map(|(role, png)| (*role, base64(&smaller(png)))).collect();
     let size: usize = shown.iter().map(|(_, data)| data.len()).sum();
     if size > *budget {
         return md + "\nImages left out: this page holds as many as it can.\n";
@@ -94,13 +95,13 @@ fn failed_output(outcome: &Outcome, budget: &mut usize) -> String {
     md + "\n"
 }
 
-/// A PNG at most `IMAGE_WIDTH` wide, scaled down with its aspect ratio kept.
-fn smaller(png: &[u8]) -> Vec<u8> {
-    let rgb = image::load_from_memory_with_format(png, image::ImageFormat::Png).expect("a PNG this crate encoded").to_rgb8();
-    if rgb.width() <= IMAGE_WIDTH {
-        return png.to_vec();
+/// `png` at most `IMAGE_WIDTH` wide, scaled down with its aspect ratio kept.
+fn smaller(png: &Png) -> Vec<u8> {
+    if png.width <= IMAGE_WIDTH {
+        return png.bytes.clone();
     }
-    let height = (u64::from(rgb.height()) * u64::from(IMAGE_WIDTH)).div_ceil(u64::from(rgb.width())) as u32;
+    let rgb = image::load_from_memory_with_format(&png.bytes, image::ImageFormat::Png).expect("a PNG this crate encoded").to_rgb8();
+    let height = (u64::from(png.height) * u64::from(IMAGE_WIDTH)).div_ceil(u64::from(png.width)) as u32;
     encode_png(&image::imageops::resize(&rgb, IMAGE_WIDTH, height.max(1), image::imageops::FilterType::Triangle))
 }
 
@@ -120,7 +121,7 @@ fn base64(bytes: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::comparison::{Png, ReportImages};
+    use crate::comparison::ReportImages;
     use crate::criteria::Criteria;
     use crate::diagnosis::{Diagnosis, Effect};
     use crate::grading::{Reference, Student};
@@ -267,7 +268,7 @@ mod tests {
         // Every failure says why it fails; the images stop at the budget.
         assert!(outputs.iter().all(|o| o.contains("\n- submission: ann/wide.png\n")));
         let with_images = outputs.iter().filter(|o| o.contains("![")).count();
-        assert!(with_images >= 1 && with_images < 20, "{with_images}");
+        assert!((1..20).contains(&with_images), "{with_images}");
         assert!(outputs[with_images..].iter().all(|o| o.ends_with("\nImages left out: this page holds as many as it can.\n")));
         assert!(text.len() < IMAGE_BUDGET + 64 * 1024, "{} bytes", text.len());
     }
