@@ -45,7 +45,7 @@ pub fn run(suite: &Suite, names: &[String], grading: Grading, outputs: Outputs) 
         Grading::One(dir) if dir.is_dir() => vec![Student::one(dir)],
         Grading::One(dir) => return Err(Failure::new(exit::INPUT, format!("{}: the submission is not a directory", dir.display()))),
     };
-    let renderer = if glint_golden::needs_renderer(&cases) { Some(crate::test::renderer()?) } else { None };
+    let renderer = if glint_golden::needs_renderer(&cases) { Some(crate::renderer()?) } else { None };
     // Gradescope's results show a failure's images too.
     let report_images = outputs.report.is_some() || outputs.gradescope.is_some();
     let (grades, reference_errors) = glint_golden::grade(&cases, renderer.as_ref(), &students, report_images, &mut print_grades);

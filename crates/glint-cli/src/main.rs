@@ -107,6 +107,15 @@ impl From<glint_gpu::GpuError> for Failure {
     }
 }
 
+/// A renderer on the GPU (a software adapter without one), after any driver warning.
+fn renderer() -> Result<glint_gpu::Renderer, Failure> {
+    let gpu = glint_gpu::Gpu::new()?;
+    if let Some(warning) = gpu.driver_warning() {
+        eprintln!("glint: {warning}");
+    }
+    Ok(glint_gpu::Renderer::new(gpu.device.clone(), gpu.queue.clone(), &glint_gpu::shaders::ShaderSource::Embedded)?)
+}
+
 fn main() -> ExitCode {
     // A closed stdout (`glint compare A B | head -1`) ends a command as it
     // ends `cat`: quietly, by SIGPIPE. Rust ignores the signal, which turns

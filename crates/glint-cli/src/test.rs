@@ -7,10 +7,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glint_golden::{Bless, RunOptions, Suite, Summary};
-use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Gpu, Renderer};
-
-use crate::{exit, Failure};
+use crate::{exit, renderer, Failure};
 
 #[derive(Args)]
 pub struct TestArgs {
@@ -78,13 +75,4 @@ pub fn run(args: &TestArgs) -> Result<(), Failure> {
     let summary = Summary::of(&outcomes);
     println!("{summary}");
     if summary.failed == 0 { Ok(()) } else { Err(Failure::explained(exit::DIFFERENT)) }
-}
-
-/// A renderer on the GPU (a software adapter without one), after any driver warning.
-pub fn renderer() -> Result<Renderer, Failure> {
-    let gpu = Gpu::new()?;
-    if let Some(warning) = gpu.driver_warning() {
-        eprintln!("glint: {warning}");
-    }
-    Ok(Renderer::new(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded)?)
 }

@@ -6,7 +6,8 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use crate::gradescope::results_json;
-use crate::grading::{GradedCase, Grades};
+use crate::grading::Grades;
+use crate::manifest::GradedCase;
 use crate::html::{points_text, write_file, write_report, STYLE};
 use crate::markup::escape;
 

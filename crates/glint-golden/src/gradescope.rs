@@ -14,7 +14,8 @@
 use serde_json::json;
 
 use crate::comparison::Png;
-use crate::grading::{GradedCase, Grades};
+use crate::grading::Grades;
+use crate::manifest::GradedCase;
 use crate::html::points_text;
 use crate::image_io::encode_png;
 use crate::markup::escape_markdown;
@@ -124,7 +125,8 @@ mod tests {
     use crate::comparison::ReportImages;
     use crate::criteria::Criteria;
     use crate::diagnosis::{Diagnosis, Effect};
-    use crate::grading::{Reference, Student};
+    use crate::grading::Student;
+    use crate::manifest::Reference;
     use crate::metrics::Metric;
     use crate::region::Region;
     use crate::runner::{Points, Status};

@@ -11,49 +11,17 @@ use glint_gpu::{Format, Image, Renderer};
 
 use crate::case_render::{render, Rendered};
 use crate::comparison::{compare, Roles, DIFF_ROLE};
-use crate::criteria::Criteria;
 use crate::diagnosis::{diagnose, variants, Variant};
 use crate::image_io::{self, LinearImage};
-use crate::manifest::file_stem_of;
+use crate::manifest::{file_stem_of, GradedCase, Reference};
 use crate::runner::{Outcome, Points, Status};
-use crate::scoring::Scoring;
-use crate::settings::{RenderSettings, ViewName, Visibility};
+use crate::settings::ViewName;
 use crate::submission_folder::{is_not_work, look_alike};
 
 /// What `image` may hold in its path: the student's folder name.
 pub const STUDENT_PLACEHOLDER: &str = "{student}";
 
 const ROLES: Roles = Roles { reference: "reference", tested: "submission" };
-
-/// A `[[case]]` with an `image`: what each student submits for it and what
-/// that is compared with.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GradedCase {
-    pub name: String,
-    /// The submitted image's path inside each student's folder.
-    pub image: String,
-    pub reference: Reference,
-    pub render: RenderSettings,
-    pub criteria: Criteria,
-    pub scoring: Scoring,
-    /// When Gradescope shows the case's test to the student; `None` leaves it
-    /// to Gradescope (visible).
-    pub visibility: Option<Visibility>,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub enum Reference {
-    /// A scene (or `spd:NAME[:SIZE]`) that Glint renders with the case's settings.
-    Scene(PathBuf),
-    /// An image file.
-    File(PathBuf),
-}
-
-impl GradedCase {
-    pub fn file_stem(&self) -> String {
-        file_stem_of(&self.name)
-    }
-}
 
 /// One student's folder of submitted images.
 #[derive(Debug, Clone, PartialEq)]

@@ -10,7 +10,6 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::criteria::Criteria;
-use crate::grading::{GradedCase, Reference};
 use crate::image_io;
 use crate::scoring::{BandDef, Scoring};
 use crate::settings::{Checked, CompareSettings, PositiveFinite, RenderSettings, Visibility};
@@ -36,6 +35,36 @@ impl Case {
 /// `_`: the stem of a case's files, or a student's folder, in a report.
 pub fn file_stem_of(name: &str) -> String {
     name.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') { c } else { '_' }).collect()
+}
+
+/// A `[[case]]` with an `image`: what each student submits for it and what
+/// that is compared with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GradedCase {
+    pub name: String,
+    /// The submitted image's path inside each student's folder.
+    pub image: String,
+    pub reference: Reference,
+    pub render: RenderSettings,
+    pub criteria: Criteria,
+    pub scoring: Scoring,
+    /// When Gradescope shows the case's test to the student; `None` leaves it
+    /// to Gradescope (visible).
+    pub visibility: Option<Visibility>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Reference {
+    /// A scene (or `spd:NAME[:SIZE]`) that Glint renders with the case's settings.
+    Scene(PathBuf),
+    /// An image file.
+    File(PathBuf),
+}
+
+impl GradedCase {
+    pub fn file_stem(&self) -> String {
+        file_stem_of(&self.name)
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
