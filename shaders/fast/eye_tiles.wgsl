@@ -1,5 +1,5 @@
 // The eye rays of a 2×2 block of pixels through its tile's list
-// (crates/glint-gpu/src/eye_tiles/binning.rs; docs/decisions/046-eye-tiles.md): the
+// (crates/glint-encoding/src/eye_tiles.rs; docs/decisions/046-eye-tiles.md): the
 // function of lib/eye_block.wgsl for a scene with eye tiles. A SIMD group's lanes trace blocks
 // of one tile (the host dispatches so), and walk its list together, nearest
 // first: each entry's primitive is loaded by four lanes, a word each, and

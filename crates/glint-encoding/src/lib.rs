@@ -5,6 +5,7 @@
 //! kernel is compiled for. glint-scene holds the model it reads; glint-gpu
 //! uploads what it makes.
 
+pub mod eye_tiles;
 pub mod gpu_bvh;
 pub mod gpu_types;
 pub mod observer;

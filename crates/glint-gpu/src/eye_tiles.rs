@@ -1,13 +1,11 @@
-//! Eye tiles on the device (binning.rs builds them on the host): the lists
+//! Eye tiles on the device (glint-encoding's eye_tiles.rs bins them on the host): the lists
 //! and the primitives the primary kernel's packets read them with, bound as
 //! group 1 (shaders/fast/eye_tiles.wgsl). They belong to one view, so they are
 //! bound apart from the scene and rebuilt when the camera moves.
 
-pub mod binning;
-
+use glint_encoding::eye_tiles::Footprints;
 use glint_encoding::gpu_types::{DispatchParams, GpuCamera, EYE_TILE_HEIGHT, EYE_TILE_WIDTH};
 
-use binning::Footprints;
 use crate::{Renderer, SceneBuffers};
 
 /// A scene's eye tiles as bound: the lists, for the camera they were built

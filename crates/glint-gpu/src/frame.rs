@@ -11,7 +11,7 @@ use glint_scene::bvh::Bvh;
 use glint_scene::polygon_split;
 use glint_scene::Scene;
 
-use crate::eye_tiles::binning::Footprints;
+use glint_encoding::eye_tiles::Footprints;
 use crate::{GpuError, Renderer, SceneBuffers};
 
 /// How the primitives are organised for traversal.

@@ -34,7 +34,7 @@ mod workload;
 pub use device::{adapter_rank, backends, device_descriptor, driver_warning, Gpu, SceneLimits, ADAPTER_ENV, NO_ADAPTER_HINT};
 pub use lavapipe::RenderedScenes;
 pub use profile::{CompiledKernels, DeviceProfile, ProfileName, PACKET_EYE_RAYS, PROFILE_ENV};
-pub use eye_tiles::binning::Footprints;
+pub use glint_encoding::eye_tiles::Footprints;
 pub use tuning::{StandIn, Tuning, WorkgroupSizes, STAND_INS};
 pub use workload::Workload;
 pub use frame::{Acceleration, Prepared};

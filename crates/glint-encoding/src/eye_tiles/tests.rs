@@ -1,7 +1,7 @@
 use bytemuck::Zeroable;
 use glam::{DVec3, Vec3};
-use glint_encoding::gpu_bvh::GpuBvh;
-use glint_encoding::gpu_types::{self, GpuPrim, PROJECTION_PERSPECTIVE};
+use crate::gpu_bvh::GpuBvh;
+use crate::gpu_types::{self, GpuPrim, PROJECTION_PERSPECTIVE};
 use glint_scene::bvh::Bvh;
 use glint_scene::test_rng::Rng;
 use glint_scene::{polygon_split, spd, Camera, Projection, Scene};

@@ -21,7 +21,7 @@ use std::ops::Range;
 
 use glam::Vec3;
 use rayon::prelude::*;
-use glint_encoding::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
+use crate::gpu_types::{GpuCamera, GpuScene, EYE_TILE_HEIGHT, EYE_TILE_WIDTH, PRIM_POLYGON, PRIM_TRIANGLE, PROJECTION_ORTHOGRAPHIC};
 
 /// The most entries the lists may hold per tile on average: beyond that a
 /// tile's list costs its rays more than the BVH walk (gears at 512×512, the

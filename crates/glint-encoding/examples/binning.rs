@@ -1,11 +1,12 @@
 //! Times eye-tile binning alone, for a profiler: an SPD scene's footprints
 //! binned from its own camera, again and again.
 //!
-//!     cargo run --release -p glint-gpu --example binning -- gears 200
+//!     cargo run --release -p glint-encoding --example binning -- gears 200
 
 use std::time::Instant;
 
 use glam::Vec3;
+use glint_encoding::eye_tiles::Footprints;
 use glint_encoding::gpu_bvh::GpuBvh;
 use glint_encoding::gpu_types;
 use glint_scene::bvh::Bvh;
@@ -21,7 +22,7 @@ fn main() {
     let bvh = Bvh::build(&bounds);
     let packed = gpu_types::pack(&scene, &bvh.order, GpuBvh::encode(&bvh).expect("an encodable BVH"));
     let ordered: Vec<(Vec3, Vec3)> = bvh.order.iter().map(|&i| bounds[i as usize]).collect();
-    let footprints = glint_gpu::Footprints::new(&packed, &ordered);
+    let footprints = Footprints::new(&packed, &ordered);
     let camera = gpu_types::scene_uniforms(&scene, 512, 512, 0, 0).camera;
     let mut times: Vec<f64> = (0..rounds)
         .map(|_| {
