@@ -106,10 +106,12 @@ impl Specialization {
 
     /// The same kinds, with every term materials, lights and render settings
     /// can make, whatever the scene's are: for a scene whose materials, lights
-    /// and settings change in place (the viewer's).
+    /// and settings change in place (the viewer's). Unturned normals stay
+    /// as the scene has them: only grading's diagnosis sets them, and no
+    /// viewer edits them.
     pub fn editable(self) -> Specialization {
-        let Specialization { kinds, smooth_triangles, view, .. } = self;
-        Specialization { kinds, smooth_triangles, view, ..Specialization::ALL }
+        let Specialization { kinds, smooth_triangles, view, unturned_normals, .. } = self;
+        Specialization { kinds, smooth_triangles, view, unturned_normals, ..Specialization::ALL }
     }
 
     /// Specialised to `views`, the views a command renders, when it is one
@@ -328,7 +330,8 @@ mod tests {
         assert!(!opaque.tinted_shadows && !opaque.depth_cue && !opaque.unturned_normals);
         for flag in [FLAG_TINTED_SHADOWS, FLAG_DEPTH_CUE, FLAG_UNTURNED_NORMALS] {
             let uniforms = SceneUniforms { flags: flag, ..SceneUniforms::zeroed() };
-            assert!(!opaque.covers_uniforms(&uniforms) && opaque.editable().covers_uniforms(&uniforms), "{flag}");
+            let editable = flag != FLAG_UNTURNED_NORMALS;
+            assert!(!opaque.covers_uniforms(&uniforms) && opaque.editable().covers_uniforms(&uniforms) == editable, "{flag}");
             assert!(Specialization::of(&glass, &uniforms).covers_uniforms(&uniforms), "{flag}");
         }
         assert!(opaque.covers_uniforms(&SceneUniforms::zeroed()));
