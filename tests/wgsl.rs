@@ -11,7 +11,7 @@ use glint_encoding::gpu_types::{
 };
 use glint_encoding::primitive_kinds::{ALL_KINDS, KINDS};
 use glint_encoding::specialization::Specialization;
-use glint_gpu::shaders::{expand, imports, Kernel, ShaderSource, SOURCES};
+use glint_gpu::shaders::{expand, imports, Kernel, ShaderSource, KERNEL_STAND_INS, SOURCES};
 use glint_gpu::{Tuning, WorkgroupSizes, STAND_INS};
 
 fn module(kernel: Kernel) -> naga::Module {
@@ -197,8 +197,10 @@ fn declarations(source: &str) -> Vec<String> {
 /// Imports are stated, not inherited, and none is idle: a file uses a name
 /// declared in another file only if it imports that file, and it uses
 /// something of every file it imports. A fast/ file that stands in for a
-/// lib/ file declares the functions other files use of it, and an import of
-/// the lib/ file stands for it too. The primary kernel carries no ray tree.
+/// lib/ file, or a kernel's own file that stands in for one in that kernel
+/// (the probe's notes), declares the functions other files use of it, and an
+/// import of the lib/ file stands for it too. The primary kernel carries no
+/// ray tree.
 #[test]
 fn imports_are_exactly_what_each_file_uses() {
     let read = |name: &str| expand(&std::fs::read_to_string(ShaderSource::source_dir().join(name)).unwrap()).unwrap();
@@ -206,7 +208,9 @@ fn imports_are_exactly_what_each_file_uses() {
         let source = read(file);
         declarations(&source).into_iter().filter(|n| source.contains(&format!("fn {n}("))).collect()
     };
-    let plain_of = |name: &str| STAND_INS.iter().find(|s| s.fast == name).map(|s| s.plain);
+    let stand_ins: Vec<(&str, &str)> =
+        STAND_INS.iter().map(|s| (s.plain, s.fast)).chain(KERNEL_STAND_INS.iter().map(|s| (s.plain, s.own))).collect();
+    let plain_of = |name: &str| stand_ins.iter().find(|(_, stand_in)| *stand_in == name).map(|(plain, _)| *plain);
     // The names a file's code uses, members after a `.` left out.
     let words = |source: &str| -> BTreeSet<String> {
         let code: String = source.lines().map(|l| l.split("//").next().unwrap_or_default()).collect::<Vec<_>>().join("\n");
@@ -222,19 +226,16 @@ fn imports_are_exactly_what_each_file_uses() {
         words
     };
     // A stand-in declares every function of its file that other files use.
-    for stand_in in STAND_INS {
-        let others: BTreeSet<String> = SOURCES
-            .iter()
-            .filter(|n| **n != stand_in.plain && plain_of(n) != Some(stand_in.plain))
-            .flat_map(|n| words(&read(n)))
-            .collect();
-        let missing: Vec<String> = functions(stand_in.plain).difference(&functions(stand_in.fast)).filter(|f| others.contains(*f)).cloned().collect();
-        assert!(missing.is_empty(), "shaders/{} stands in for {} without {missing:?}", stand_in.fast, stand_in.plain);
+    for &(plain, stand_in) in &stand_ins {
+        let others: BTreeSet<String> =
+            SOURCES.iter().filter(|n| **n != plain && plain_of(n) != Some(plain)).flat_map(|n| words(&read(n))).collect();
+        let missing: Vec<String> = functions(plain).difference(&functions(stand_in)).filter(|f| others.contains(*f)).cloned().collect();
+        assert!(missing.is_empty(), "shaders/{stand_in} stands in for {plain} without {missing:?}");
     }
     // A stand-in's own names are what it declares beyond the file it stands in for.
     let declared: BTreeMap<String, Vec<String>> = SOURCES
         .iter()
-        .filter(|n| !n.starts_with("kernels/"))
+        .filter(|n| !Kernel::ALL.iter().any(|k| k.file() == **n))
         .map(|n| {
             let plain: Vec<String> = plain_of(n).map(|p| declarations(&read(p))).unwrap_or_default();
             (n.to_string(), declarations(&read(n)).into_iter().filter(|d| !plain.contains(d)).collect())
@@ -254,6 +255,31 @@ fn imports_are_exactly_what_each_file_uses() {
     let primary = ShaderSource::Embedded.compose(Kernel::Primary, Specialization::ALL, Tuning::PLAIN).unwrap();
     assert!(!primary.source.contains("fn trace_pixel"), "the primary kernel carries the ray tree");
     assert!(!primary.source.contains("fn diffuse_only"), "the primary kernel carries shadow rays");
+}
+
+/// The ray tree's notes record nothing but in the probe kernel, which
+/// composes its own in their place, in every tuning; each kernel's stand-in
+/// stands in for a lib/ file that some other kernel composes.
+#[test]
+fn only_the_probe_kernel_records_the_ray_tree() {
+    for kernel in Kernel::ALL {
+        for tuning in Tuning::all() {
+            let files: Vec<String> = ShaderSource::Embedded.compose(kernel, Specialization::ALL, tuning).unwrap().files.into_iter().map(|(name, ..)| name).collect();
+            let has = |file: &str| files.iter().any(|name| name == file);
+            assert!(!(has("lib/notes.wgsl") && has("kernels/probe_notes.wgsl")), "{kernel:?} tuned {}: {files:?}", tuning.name());
+            if kernel == Kernel::Probe {
+                assert!(has("kernels/probe_notes.wgsl"), "{files:?}");
+            } else {
+                assert!(!has("kernels/probe_notes.wgsl"), "{kernel:?}: {files:?}");
+            }
+        }
+    }
+    assert!(ShaderSource::Embedded.compose(Kernel::Trace, Specialization::ALL, Tuning::PLAIN).unwrap().files.iter().any(|(name, ..)| name == "lib/notes.wgsl"));
+    for s in KERNEL_STAND_INS {
+        assert!(s.plain.starts_with("lib/") && s.own.starts_with("kernels/"), "{s:?}");
+        assert_eq!(s.kernel.file_for(s.plain), s.own);
+        assert!(Kernel::ALL.iter().any(|k| k.file_for(s.plain) == s.plain), "no kernel composes {}", s.plain);
+    }
 }
 
 /// The words of a SIMD machine's lanes, of drivers and of lavapipe's tuning,

@@ -1,7 +1,7 @@
 // The trace kernel: one sample per pixel per dispatch, Whitted's ray tree
 // (lib/ray_tree.wgsl). The teaching views show the tree's size instead of its
 // colour: how deep it went, and how many rays it took.
-// import: bvh camera dispatch primitive ray_tree sample types
+// import: camera dispatch ray_tree sample
 
 @compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)
 fn trace_main(
@@ -21,12 +21,3 @@ fn trace_main(
     flush_ray_counts(wid, groups);
 }
 
-// The tree is not recorded here: the ray tree's notes cost nothing.
-fn note_ray(kind: u32, parent: u32, depth: u32, ray: Ray, weight: vec3<f32>, t: f32) -> u32 {
-    return NO_RAY;
-}
-fn note_hit(s: Surface, prim: u32) {}
-fn note_ambient(term: vec3<f32>) {}
-fn note_light(light: u32, point: vec3<f32>, dir: vec3<f32>, distance: f32, n_dot_l: f32, shadow: Hit, diffuse: vec3<f32>, specular: vec3<f32>) {}
-fn note_cue(scale: f32) {}
-fn note_refraction(eta: f32, total_internal_reflection: bool) {}

@@ -3,10 +3,10 @@
 // down to the scene's maximum depth. WGSL has no recursion, so the rays still
 // to trace wait on an explicit stack, each with the weight its colour
 // contributes to the pixel, and `trace_step` is one call of trace(R). The tree
-// is handed, ray by ray and term by term, to the kernel's `note_` functions:
-// the trace kernel's do nothing, the probe kernel's record the tree for
-// `glint probe` and the viewer's inspector.
-// import: bindings bvh checker dispatch primitive scene_arrays secondary_rays shade shadow types
+// is handed, ray by ray and term by term, to the `note_` functions of
+// lib/notes.wgsl, which do nothing; the probe kernel composes its own in their
+// place, which record the tree for `glint probe` and the viewer's inspector.
+// import: bindings bvh checker dispatch notes primitive scene_arrays secondary_rays shade shadow types
 
 // The deepest level this invocation's tree reached (the ray-depth view).
 var<private> deepest: u32;

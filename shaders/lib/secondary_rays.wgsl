@@ -1,7 +1,7 @@
 // The branches of Whitted's ray tree: the reflected and refracted rays a
 // surface spawns, k_r·trace(reflect) + k_t·trace(refract), which wait on the
 // ray tree's stack with the weight their colour contributes to the pixel.
-// import: bindings dispatch primitive reflect refract shade types
+// import: bindings dispatch notes primitive reflect refract shade types
 
 struct PendingRay {
     ray: Ray,

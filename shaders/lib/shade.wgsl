@@ -5,7 +5,7 @@
 // of k_s·O_s for metallic highlights. S is the shadow term, att the attenuation.
 // The sum is taken one light at a time (`light_term`), since S comes from a
 // shadow ray that the ray tree traces in between (lib/ray_tree.wgsl).
-// import: bindings bvh primitive reflect types
+// import: bindings bvh notes primitive reflect types
 
 fn light_attenuation(light: GpuLight, d: f32) -> f32 {
     // A kernel for a scene whose lights do not fade (HAS_ATTENUATION false,
@@ -89,7 +89,7 @@ fn next_lit_light(s: Surface, first: u32) -> LitLight {
     return LitLight(i, LightSample(vec3<f32>(0.0), MISS, 0.0, 0.0));
 }
 
-// k_a·I_a·O_d, handed to the kernel's `note_ambient`.
+// k_a·I_a·O_d, handed to `note_ambient` (lib/notes.wgsl).
 fn ambient_term(m: GpuMaterial) -> vec3<f32> {
     let color = m.ka * uniforms.ambient * m.color;
     note_ambient(color);
@@ -98,7 +98,7 @@ fn ambient_term(m: GpuMaterial) -> vec3<f32> {
 
 // A lit light's diffuse and specular terms at `s` seen from `v` (pointing
 // from the surface towards the viewer), through `shadow`, what its shadow ray
-// let through; handed to the kernel's `note_light`.
+// let through; handed to `note_light` (lib/notes.wgsl).
 fn light_term(lit: LitLight, s: Surface, m: GpuMaterial, v: vec3<f32>, shadow: Hit) -> vec3<f32> {
     let i = lit.index;
     let sample = lit.sample;

@@ -20,6 +20,22 @@ pub enum Kernel {
     Probe,
 }
 
+/// A file one kernel composes in place of a file of shaders/lib/, declaring
+/// the same functions (tests/wgsl.rs checks), as a `StandIn` does for a
+/// tuning: whatever the tuning, `kernel` composes `own` wherever a file
+/// imports `plain`.
+#[derive(Debug, Clone, Copy)]
+pub struct KernelStandIn {
+    pub kernel: Kernel,
+    pub plain: &'static str,
+    pub own: &'static str,
+}
+
+/// Every kernel's stand-in. The ray tree tells its kernel what it traces
+/// through lib/notes.wgsl, which records nothing; the probe kernel records it.
+pub const KERNEL_STAND_INS: [KernelStandIn; 1] =
+    [KernelStandIn { kernel: Kernel::Probe, plain: "lib/notes.wgsl", own: "kernels/probe_notes.wgsl" }];
+
 impl Kernel {
     pub const ALL: [Kernel; 6] =
         [Kernel::Trace, Kernel::Primary, Kernel::Diffuse, Kernel::Resolve, Kernel::Present, Kernel::Probe];
@@ -33,6 +49,12 @@ impl Kernel {
             Kernel::Present => "kernels/present.wgsl",
             Kernel::Probe => "kernels/probe.wgsl",
         }
+    }
+
+    /// The file this kernel composes for the import of `name`: its own
+    /// stand-in ([`KERNEL_STAND_INS`]), else `name` itself.
+    pub fn file_for(self, name: &str) -> &str {
+        KERNEL_STAND_INS.iter().find(|s| s.kernel == self && s.plain == name).map_or(name, |s| s.own)
     }
 
     /// Whether the kernel intersects primitives, so that its code depends on

@@ -7,7 +7,9 @@
 //! specialised to (`Specialization`) and of the device's tuning (`Tuning`),
 //! followed by the files its imports reach,
 //! each once, every file after the files it imports. A `fast/` file stands in
-//! for a `lib/` file where the tuning says (`Tuning::file`). So a kernel's file list
+//! for a `lib/` file where the tuning says (`Tuning::file`), and a kernel's own
+//! file for a `lib/` file in that kernel alone (`Kernel::file_for`: the probe's
+//! notes, which record the ray tree). So a kernel's file list
 //! is derived from the code, and holds only what the kernel uses. A line
 //! `// generated: NAME` becomes the dispatch on primitive kinds generated from
 //! glint-encoding's registry (primitive_dispatch.rs), and its file imports every
@@ -20,7 +22,7 @@ use std::path::{Path, PathBuf};
 
 use glint_encoding::specialization::Specialization;
 
-pub use crate::kernel::Kernel;
+pub use crate::kernel::{Kernel, KernelStandIn, KERNEL_STAND_INS};
 use crate::primitive_dispatch;
 pub use crate::tuning::SceneArrays;
 use crate::tuning::Tuning;
@@ -174,7 +176,7 @@ impl ShaderSource {
     /// tunes it as `tuning` says: the prelude, then every file its imports reach.
     pub fn compose(&self, kernel: Kernel, specialization: Specialization, tuning: Tuning) -> Result<Composed, GpuError> {
         let mut order = Vec::new();
-        self.visit(kernel.file(), tuning, &mut Vec::new(), &mut order)?;
+        self.visit(kernel.file(), kernel, tuning, &mut Vec::new(), &mut order)?;
         let mut source = glint_encoding::gpu_types::wgsl_prelude();
         source.push_str(&specialization.wgsl());
         source.push_str(&tuning.wgsl());
@@ -194,11 +196,14 @@ impl ShaderSource {
         Ok(Composed { source, files: starts })
     }
 
-    /// Appends `name`, or the file that `tuning` puts in its place, to
-    /// `order` after everything it imports (depth first); `path` is the chain
-    /// of imports being followed, to report a cycle.
-    fn visit(&self, name: &str, tuning: Tuning, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
-        let name = tuning.file(name);
+    /// Appends `name`, or the file that `kernel` or else `tuning` puts in its
+    /// place, to `order` after everything it imports (depth first); `path` is
+    /// the chain of imports being followed, to report a cycle.
+    fn visit(&self, name: &str, kernel: Kernel, tuning: Tuning, path: &mut Vec<String>, order: &mut Vec<(String, String)>) -> Result<(), GpuError> {
+        let name = match kernel.file_for(name) {
+            own if own != name => own,
+            _ => tuning.file(name),
+        };
         if order.iter().any(|(done, _)| done == name) {
             return Ok(());
         }
@@ -211,7 +216,7 @@ impl ShaderSource {
             if !self.exists(&import) {
                 return Err(GpuError::Shader(format!("shaders/{name}:{line}: imports {import}, which is no shader file")));
             }
-            self.visit(&import, tuning, path, order)?;
+            self.visit(&import, kernel, tuning, path, order)?;
         }
         path.pop();
         order.push((name.to_string(), text));
