@@ -1,5 +1,7 @@
 // The BVH's records and their grids, in storage buffers. A tuning may put
 // fast/bvh_textures.wgsl or fast/uniform_tree.wgsl in this file's place.
+// A seam: the walk reads records through `node_at` and `grid_at`, not by
+// indexing, only so that those files can keep them elsewhere.
 // import: types
 
 @group(0) @binding(2) var<storage, read> nodes: array<GpuNode>;

@@ -1,6 +1,8 @@
 // The scene's primitives and polygon points, in storage buffers. A tuning may
 // put fast/scene_textures.wgsl in this file's place: the same functions over
-// the same bindings (SceneArrays in crates/glint-gpu/src/shaders.rs).
+// the same bindings (SceneArrays in crates/glint-gpu/src/tuning.rs).
+// A seam: `prim_at` and `point_at` stand for indexing, only so that the
+// stand-in can read textures instead.
 // import: types
 
 @group(0) @binding(1) var<storage, read> prims: array<GpuPrim>;
