@@ -8,8 +8,8 @@ mod support;
 
 use glam::{DVec3, Vec3};
 use glint_encoding::gpu_types::{NO_RAY, RAY_EYE, RAY_REFRACT, RAY_SHADOW};
-use glint_encoding::observer::{object_bounds, Ink, Observer, Overlay, OverlayOptions, ProbedPixel, RayId};
 use glint_gpu::probe::RayTree;
+use glint_observer::{object_bounds, Ink, Observer, Overlay, OverlayOptions, ProbedPixel, RayId};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, Projection, Scene, MAX_DEPTH_LIMIT};
 

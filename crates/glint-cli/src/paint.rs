@@ -2,7 +2,7 @@
 //! lines and dots, each over a dark outline so it reads on any background.
 
 use glam::DVec2;
-use glint_encoding::observer::{clip_to_box, Ink, Observer, Overlay};
+use glint_observer::{clip_to_box, Ink, Observer, Overlay};
 use image::RgbImage;
 
 /// Dashes of shadow rays: this many pixels drawn, then a gap.

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use clap::Args;
 use glam::Vec3;
 use glint_encoding::gpu_types::ProbeRay;
-use glint_encoding::observer::{Observer, Overlay, OverlayOptions, ProbedPixel, GRID_CELL_PIXELS};
 use glint_gpu::{Acceleration, RenderOptions, Renderer};
+use glint_observer::{Observer, Overlay, OverlayOptions, ProbedPixel, GRID_CELL_PIXELS};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, Projection, Scene, MAX_DEPTH_LIMIT};
 
@@ -90,7 +90,7 @@ impl ObserverPicture {
         let prepared = renderer.prepare(&seen, observer.width, observer.height, Acceleration::Bvh)?;
         let (render, _) = renderer.render(&prepared.buffers, &RenderOptions::default(), &mut |_, _| {})?;
         let mut image = render.to_rgb8();
-        let bounds = glint_encoding::observer::object_bounds(scene);
+        let bounds = glint_observer::object_bounds(scene);
         let options = OverlayOptions { max_depth: MAX_DEPTH_LIMIT, grid: observer.cell_size(frame) >= GRID_CELL_PIXELS };
         let overlay = Overlay::new(scene, frame, bounds, &[ProbedPixel { pixel, rays }], options);
         paint_overlay(&mut image, &overlay, observer);

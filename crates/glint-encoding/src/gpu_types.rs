@@ -370,6 +370,12 @@ pub struct ProbeRay {
     pub _pad: u32,
 }
 
+/// The scene's index of the light a shadow ray went to: the kernels see only
+/// the lights that are on, in scene order.
+pub fn shadow_ray_light(scene: &Scene, ray: &ProbeRay) -> Option<usize> {
+    scene.lights.iter().enumerate().filter(|(_, l)| l.enabled).nth(ray.light as usize).map(|(i, _)| i)
+}
+
 /// The head of the probe kernel's buffer; `PROBE_CAPACITY` rays follow it.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

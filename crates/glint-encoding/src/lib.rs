@@ -8,7 +8,6 @@
 pub mod eye_tiles;
 pub mod gpu_bvh;
 pub mod gpu_types;
-pub mod observer;
 pub mod primitive_kinds;
 mod ray_stats;
 pub mod specialization;

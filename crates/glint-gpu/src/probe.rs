@@ -189,7 +189,7 @@ impl TreeText<'_> {
     /// The scene's index of the light a shadow ray went to: the kernels see
     /// only the lights that are on, in scene order.
     pub fn scene_light(&self, ray: &ProbeRay) -> Option<usize> {
-        glint_encoding::observer::shadow_ray_light(self.scene, ray)
+        glint_encoding::gpu_types::shadow_ray_light(self.scene, ray)
     }
 
     /// "object N (shape, material "name")".

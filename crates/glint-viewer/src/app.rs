@@ -194,7 +194,7 @@ impl ViewerApp {
     }
 
     /// What is drawn over the image, in 3-D, and the camera that sees it.
-    pub fn overlay(&self) -> Option<(glint_encoding::observer::Observer, glint_encoding::observer::Overlay)> {
+    pub fn overlay(&self) -> Option<(glint_observer::Observer, glint_observer::Overlay)> {
         self.inspector.overlay(&self.image, self.document.loaded.as_ref()?)
     }
 

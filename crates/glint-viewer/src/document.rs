@@ -149,7 +149,7 @@ pub(crate) struct LoadedScene {
 impl LoadedScene {
     fn new(mut scene: Scene, generation: u64) -> Self {
         scene.set_frame(0);
-        let bounds = glint_encoding::observer::object_bounds(&scene);
+        let bounds = glint_observer::object_bounds(&scene);
         let radius = if bounds.0.cmple(bounds.1).all() { (bounds.1 - bounds.0).length() / 2.0 } else { 1.0 };
         let fov = match scene.camera.projection {
             Projection::Perspective { fov_y_degrees } => fov_y_degrees,

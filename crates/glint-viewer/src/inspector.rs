@@ -14,9 +14,9 @@ use std::sync::Arc;
 
 use egui::{CollapsingHeader, Color32, Pos2, Stroke, Ui};
 use glint_encoding::gpu_types::{ProbeRay, NO_RAY, PROBE_BLOCKED, PROBE_SHADOW_TRACED, RAY_EYE, RAY_SHADOW};
-use glint_encoding::observer::{Observer, Overlay, OverlayOptions, ProbedPixel, RayId, GRID_CELL_PIXELS};
 use glint_gpu::probe::{Prober, RayTree, TreeText};
 use glint_gpu::{GpuError, Readback, RenderOptions};
+use glint_observer::{Observer, Overlay, OverlayOptions, ProbedPixel, RayId, GRID_CELL_PIXELS};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, MAX_DEPTH_LIMIT};
 

@@ -2,12 +2,12 @@
 //! it, frozen while the view's camera moves freely as a second camera, the
 //! observer. The image shows the scene from the observer; drawn over it in 3-D
 //! are the frozen camera's frame, its view window and the trees
-//! (`glint_encoding::observer`, which `glint probe --observer` draws too).
+//! (`glint_observer`, which `glint probe --observer` draws too).
 
 use egui::{Color32, Painter, Pos2, Rect, Shape, Stroke};
 use glam::DVec2;
-use glint_encoding::observer::{clip_to_box, Ink, Observer, Overlay, RayId};
 use glint_gpu::probe::RayTree;
+use glint_observer::{clip_to_box, Ink, Observer, Overlay, RayId};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::Camera;
 

@@ -2,7 +2,7 @@ use bytemuck::Zeroable;
 use glam::{DVec2, DVec3, Vec3};
 
 use super::*;
-use crate::gpu_types::PROBE_SHADOW_TRACED;
+use glint_encoding::gpu_types::PROBE_SHADOW_TRACED;
 
 /// A camera at the origin looking down −z with a 90° field of view: its 2 x 2
 /// pixel window has corners (±1, ±1, −1).

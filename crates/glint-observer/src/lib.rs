@@ -2,12 +2,14 @@
 //! trees it probed, as 3-D segments and dots that a second camera, the
 //! observer, draws. The viewer paints them with egui and `glint probe
 //! --observer` into a PNG; both take the geometry and the inks from here.
+//! It reads the probe's rays as glint-encoding lays them out, and knows no
+//! GPU and no GUI.
 
 use glam::{DVec2, DVec3, Vec3};
 use glint_scene::camera_frame::CameraFrame;
 use glint_scene::{Camera, LightKind, Projection, Scene};
 
-use crate::gpu_types::{ProbeRay, NO_RAY, PROBE_BLOCKED, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW};
+use glint_encoding::gpu_types::{shadow_ray_light, ProbeRay, NO_RAY, PROBE_BLOCKED, RAY_EYE, RAY_REFLECT, RAY_REFRACT, RAY_SHADOW};
 
 /// The window's pixel grid is drawn when a pixel looks at least this many
 /// of the observer's pixels across.
@@ -190,15 +192,9 @@ fn depth(rays: &[ProbeRay], ray: &ProbeRay) -> u32 {
     }
 }
 
-/// The scene's index of the light a shadow ray went to: the kernels see only
-/// the lights that are on, in scene order.
-pub fn shadow_ray_light(scene: &Scene, ray: &ProbeRay) -> Option<usize> {
-    scene.lights.iter().enumerate().filter(|(_, l)| l.enabled).nth(ray.light as usize).map(|(i, _)| i)
-}
-
 /// The box around the scene's objects (empty, lo > hi, when none is bounded).
 pub fn object_bounds(scene: &Scene) -> (Vec3, Vec3) {
-    crate::gpu_types::primitive_bounds(scene).into_iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
+    glint_encoding::gpu_types::primitive_bounds(scene).into_iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
 }
 
 /// Where rays that find nothing are cut off, and how long normals are drawn.
