@@ -41,30 +41,6 @@ fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))).unwrap()
 }
 
-/// Each image of a Markdown output, decoded: its alt text and image.
-fn inline_images(output: &str) -> Vec<(String, image::RgbImage)> {
-    output
-        .split("![")
-        .skip(1)
-        .map(|part| {
-            let (alt, rest) = part.split_once("](data:image/png;base64,").unwrap();
-            let data = rest.split(')').next().unwrap();
-            (alt.to_string(), image::load_from_memory(&base64_decode(data)).unwrap().to_rgb8())
-        })
-        .collect()
-}
-
-fn base64_decode(text: &str) -> Vec<u8> {
-    let value = |c: u8| b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/".iter().position(|&a| a == c).unwrap() as u32;
-    let mut out = Vec::new();
-    for quad in text.as_bytes().chunks(4) {
-        let digits: Vec<u32> = quad.iter().filter(|&&c| c != b'=').map(|&c| value(c)).collect();
-        let n = digits.iter().enumerate().fold(0, |n, (i, d)| n | d << (18 - 6 * i));
-        out.extend((0..digits.len() - 1).map(|i| (n >> (16 - 8 * i)) as u8));
-    }
-    out
-}
-
 #[test]
 fn run_autograder_grades_a_submission_stage_by_stage() {
     let dir = tempfile::tempdir().unwrap();
@@ -116,13 +92,9 @@ fn run_autograder_grades_a_submission_stage_by_stage() {
     let diagnosis = output.split("\n\n").nth(1).unwrap();
     assert!(diagnosis.starts_with("closest to Glint's render without shadow rays (flip ") && diagnosis.ends_with("): **check your shadow rays**"), "{output}");
     assert!(output.contains("\n- settings: view shaded, max depth 1, 1 spp, 160x120\n"), "{output}");
-    let images = inline_images(output);
-    let roles: Vec<&str> = images.iter().map(|(role, _)| role.as_str()).collect();
-    assert_eq!(roles, ["reference", "submission", "diff"]);
-    // Whole, at 160x120, the student's own pixels; the diff map outlines
-    // where shadows are missing in cyan.
-    assert_eq!(images[1].1, image::open(submission.join("shadows.png")).unwrap().to_rgb8());
-    assert!(images[2].1.pixels().filter(|p| p.0 == [0, 255, 255]).count() >= 4 * 12, "no outline on the diff map");
+    // The three pictures, inline (glint-golden's gradescope.rs tests what they hold).
+    let roles: Vec<&str> = output.split("![").skip(1).filter_map(|image| image.split_once("](data:image/png;base64,")).map(|(role, _)| role).collect();
+    assert_eq!(roles, ["reference", "submission", "diff"], "{output}");
 }
 
 /// A made-up machine for setup.sh: stub commands that log what they are
