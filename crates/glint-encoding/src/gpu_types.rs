@@ -340,7 +340,7 @@ pub struct GpuMaterial {
     pub _pad2: u32,
 }
 
-/// One ray of a probed tree, as shaders/kernels/probe.wgsl records it.
+/// One ray of a probed tree, as shaders/kernels/probe_notes.wgsl records it.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct ProbeRay {

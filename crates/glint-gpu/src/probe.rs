@@ -1,6 +1,6 @@
 //! One pixel's ray tree, as the kernels trace it: the probe kernel runs the
 //! trace kernel's own ray-tree and shading code over one pixel and records
-//! every ray and every term it adds (shaders/kernels/probe.wgsl).
+//! every ray and every term it adds (shaders/kernels/probe.wgsl, whose notes shaders/kernels/probe_notes.wgsl records).
 
 use bytemuck::Zeroable;
 use glint_encoding::gpu_types::{
