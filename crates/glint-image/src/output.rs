@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::ImageError;
+use crate::{ImageError, Region};
 
 /// A rendered image, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -85,6 +85,16 @@ impl Image {
             self.display[start..start + row].copy_from_slice(display);
             self.linear[start..start + row].copy_from_slice(linear);
         }
+    }
+
+    /// The part of this image in `part`, which must lie inside it: what
+    /// [`paste`](Image::paste) puts back.
+    pub fn crop(&self, part: Region) -> Image {
+        let at = |x: u32, y: u32| (y * self.width + x) as usize;
+        let rows = part.y0..part.y1;
+        let display = rows.clone().flat_map(|y| self.display[at(part.x0, y)..at(part.x1, y)].to_vec()).collect();
+        let linear = rows.flat_map(|y| self.linear[at(part.x0, y)..at(part.x1, y)].to_vec()).collect();
+        Image { width: part.width(), height: part.height(), display, linear }
     }
 
     /// Replaces the kernel's miss marker in a depth image (or tile) by +∞.
@@ -294,6 +304,19 @@ pub fn read_pfm(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_crop_is_the_part_paste_puts_back() {
+        let pixels = |w: u32, h: u32| (0..w * h).map(|i| [i as f32, 0.0, 0.0, 1.0]).collect::<Vec<_>>();
+        let image = Image { width: 4, height: 3, display: pixels(4, 3), linear: pixels(4, 3) };
+        let corner = image.crop(Region { x0: 0, y0: 0, x1: 3, y1: 2 });
+        assert_eq!((corner.width, corner.height), (3, 2));
+        assert_eq!(corner.display.iter().map(|p| p[0]).collect::<Vec<_>>(), [0.0, 1.0, 2.0, 4.0, 5.0, 6.0]);
+        assert_eq!(corner.linear, corner.display);
+        let mut back = image.clone();
+        back.paste(&image.crop(Region { x0: 1, y0: 1, x1: 4, y1: 3 }), 1, 1);
+        assert_eq!(back, image);
+    }
 
     #[test]
     fn output_paths_are_checked_without_leaving_files() {

@@ -344,15 +344,6 @@ mod tests {
         Image { width, height, display, linear }
     }
 
-    /// The part of `image` in `tile`.
-    fn crop(image: &Image, tile: Region) -> Image {
-        let at = |x: u32, y: u32| (y * image.width + x) as usize;
-        let rows = tile.y0..tile.y1;
-        let display = rows.clone().flat_map(|y| image.display[at(tile.x0, y)..at(tile.x1, y)].to_vec()).collect();
-        let linear = rows.flat_map(|y| image.linear[at(tile.x0, y)..at(tile.x1, y)].to_vec()).collect();
-        Image { width: tile.width(), height: tile.height(), display, linear }
-    }
-
     /// Writes `image` to `path` in tiles of `tile_pixels`, in reading order or
     /// its `reverse`, and returns the most bytes the sink held meanwhile.
     fn write_in_tiles(image: &Image, path: &Path, samples: Samples, channels: Channels, tile_pixels: u64, reverse: bool) -> usize {
@@ -363,7 +354,7 @@ mod tests {
         }
         let mut held = 0;
         for tile in tiles {
-            sink.paste(&crop(image, tile), tile.x0, tile.y0).unwrap();
+            sink.paste(&image.crop(tile), tile.x0, tile.y0).unwrap();
             held = held.max(sink.retained_bytes());
         }
         sink.finish().unwrap().commit().unwrap();
@@ -494,7 +485,7 @@ mod tests {
             let path = dir.path().join(name);
             // Abandoned halfway, as when a render fails: no file at all.
             let mut sink = ImageSink::create(&path, 20, 10, Bits::Eight.into(), Channels::Rgb).unwrap();
-            sink.paste(&crop(&img, Region { x0: 0, y0: 0, x1: 20, y1: 4 }), 0, 0).unwrap();
+            sink.paste(&img.crop(Region { x0: 0, y0: 0, x1: 20, y1: 4 }), 0, 0).unwrap();
             drop(sink);
             assert!(listing().is_empty(), "{name}: {:?}", listing());
             // Finished but not committed: still nothing at the path.
@@ -508,7 +499,7 @@ mod tests {
         }
         let path = dir.path().join("b.png");
         let mut sink = ImageSink::create(&path, 20, 10, Bits::Eight.into(), Channels::Rgb).unwrap();
-        let half = crop(&img, Region { x0: 0, y0: 0, x1: 20, y1: 5 });
+        let half = img.crop(Region { x0: 0, y0: 0, x1: 20, y1: 5 });
         sink.paste(&half, 0, 0).unwrap();
         let e = sink.paste(&half, 0, 2).unwrap_err().to_string();
         assert!(e.contains("b.png") && e.contains("overlaps"), "{e}");
