@@ -7,6 +7,7 @@ use clap::{Args, ValueEnum};
 use glint_encoding::gpu_types::View;
 use glint_gpu::shaders::ShaderSource;
 use glint_gpu::{Acceleration, Gpu, Prepared, RayStats, RenderOptions, Renderer, Workload};
+use glint_scene::MAX_DEPTH_LIMIT;
 
 use crate::{exit, Failure};
 
@@ -31,6 +32,10 @@ pub struct BenchArgs {
     /// Acceleration structure to measure (brute force tests every primitive per ray)
     #[arg(long, value_enum, default_value_t = AccelArg::Bvh)]
     accel: AccelArg,
+    /// Longest ray path of the Whitted frame, the eye ray counting as depth 1
+    /// (default: each scene's); 1 traces eye and shadow rays alone
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_DEPTH_LIMIT)))]
+    max_depth: Option<u32>,
     /// One JSON object per scene per line
     #[arg(long)]
     json: bool,
@@ -78,6 +83,7 @@ struct Measurement {
     /// Untimed primary frames within the warm-up, after the first.
     warm_up_frames: usize,
     whitted: Duration,
+    max_depth: u32,
     stats: RayStats,
     nodes_per_primary_ray: f64,
 }
@@ -98,7 +104,8 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
         AccelArg::Brute => Acceleration::BruteForce,
     };
     if !args.json {
-        eprintln!("{} — {}x{}, median of {} frames", gpu.info().name, args.width, args.height, args.frames);
+        let depth = args.max_depth.map_or(String::new(), |d| format!(", Whitted frame to depth {d}"));
+        eprintln!("{} — {}x{}, median of {} frames{depth}", gpu.info().name, args.width, args.height, args.frames);
         println!(
             "{:<22} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>11} {:>9} {:>10} {:>11} {:>11} {:>9}",
             "scene", "prims", "build ms", "tiles ms", "nodes", "GPU bytes", "B/prim", "primary ms", "view ms", "Mrays/s", "Whitted ms", "Mrays/s", "nodes/ray"
@@ -107,15 +114,23 @@ pub fn run(args: &BenchArgs) -> Result<(), Failure> {
     // The driver's SIMD width, where the profile chooses it: the kernels'
     // speed depends on it.
     let vector_bits = renderer.profile().kernels.and_then(|kernels| kernels.vector_bits);
+    let mut measured = Vec::new();
     for path in &scenes {
         let m = measure(&renderer, path, args, acceleration)?;
         print(&m, args, vector_bits);
+        measured.push(m);
+    }
+    if !args.json {
+        print_kinds(&measured);
     }
     Ok(())
 }
 
 fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acceleration) -> Result<Measurement, Failure> {
-    let scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
+    let mut scene = glint_scene::load(path).map_err(|e| Failure::new(exit::INPUT, e))?;
+    if let Some(depth) = args.max_depth {
+        scene.render.max_depth = depth;
+    }
     let mut prepared = renderer.prepare(&scene, args.width, args.height, acceleration)?;
     let scene_kernels = prepared.buffers.specialization;
     // Device time per frame: tracing only, no resolve or read-back. When the
@@ -170,6 +185,7 @@ fn measure(renderer: &Renderer, path: &Path, args: &BenchArgs, acceleration: Acc
         view_work,
         warm_up_frames,
         whitted,
+        max_depth: scene.render.max_depth,
         stats,
         nodes_per_primary_ray,
     })
@@ -191,10 +207,42 @@ fn mrays(rays: u64, time: Duration) -> f64 {
     rays as f64 / time.as_secs_f64() / 1e6
 }
 
+/// The Whitted frame's rays by kind. The kinds are traced together in one
+/// frame and a GPU times no kind alone, so each kind's rate is its rays over
+/// the whole frame's time.
+fn by_kind(stats: &RayStats) -> [(&'static str, u64); 4] {
+    [("eye", stats.eye_hit + stats.eye_miss), ("shadow", stats.shadow), ("reflected", stats.reflect), ("refracted", stats.refract)]
+}
+
+fn scene_name(m: &Measurement) -> String {
+    Path::new(&m.scene).file_stem().map_or(m.scene.clone(), |s| s.to_string_lossy().into_owned())
+}
+
+fn print_kinds(measured: &[Measurement]) {
+    println!();
+    println!("Whitted frame by ray kind: rays per frame, and Mrays/s = that kind's rays / the whole frame's time (no kind is timed alone)");
+    print!("{:<22} {:>6} {:>11}", "scene", "depth", "Whitted ms");
+    for (kind, _) in by_kind(&RayStats::default()) {
+        print!(" {:>14} {:>9}", format!("{kind} rays"), "Mrays/s");
+    }
+    println!();
+    for m in measured {
+        print!("{:<22} {:>6} {:>11.1}", scene_name(m), m.max_depth, m.whitted.as_secs_f64() * 1e3);
+        for (_, rays) in by_kind(&m.stats) {
+            print!(" {:>14} {:>9.2}", rays, mrays(rays, m.whitted));
+        }
+        println!();
+    }
+}
+
 fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
     let pixels = u64::from(args.width) * u64::from(args.height);
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     if args.json {
+        let kinds: serde_json::Map<String, serde_json::Value> = by_kind(&m.stats)
+            .iter()
+            .map(|&(kind, rays)| (kind.to_string(), serde_json::json!({ "rays": rays, "mrays_per_s": mrays(rays, m.whitted) })))
+            .collect();
         let value = serde_json::json!({
             "scene": m.scene,
             "width": args.width,
@@ -219,10 +267,12 @@ fn print(m: &Measurement, args: &BenchArgs, vector_bits: Option<u32>) {
             "refract": m.stats.refract,
             "rays": m.stats.total(),
             "vector_bits": vector_bits,
+            "max_depth": m.max_depth,
+            "kinds": kinds,
         });
         println!("{value}");
     } else {
-        let name = Path::new(&m.scene).file_stem().map_or(m.scene.clone(), |s| s.to_string_lossy().into_owned());
+        let name = scene_name(m);
         let tiles = m.eye_tiles_build.map_or("-".to_string(), |d| format!("{:.1}", ms(d)));
         println!(
             "{:<22} {:>9} {:>9.1} {:>9} {:>9} {:>10} {:>9.1} {:>11.1} {:>9.1} {:>10.2} {:>11.1} {:>11.2} {:>9.1}",
