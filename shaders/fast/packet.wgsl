@@ -8,7 +8,7 @@
 // rays. The packet visits every node one of its rays enters, and each ray gets
 // exactly the hit `traverse` gives it alone: the same tests in the same
 // arithmetic (triangle_intersect4 and the like), the same tie-break.
-// import: bindings bvh bvh_records fast/plane4 fast/polygon4 fast/ray_frame4 fast/rays4 fast/triangle4 scene_arrays types
+// import: bindings bvh bvh_nodes bvh_records fast/plane4 fast/polygon4 fast/ray_frame4 fast/rays4 fast/triangle4 scene_arrays types
 
 struct Packet {
     rays: Rays4,

@@ -120,7 +120,7 @@ impl GpuGrid {
 }
 
 /// The biased exponent of the smallest power of two `c` with 254·c ≥ `extent`,
-/// from the bits alone, as `derived_grid` in bvh.wgsl does: for extent m·2^E
+/// from the bits alone, as `derived_grid` in bvh_nodes.wgsl does: for extent m·2^E
 /// (1 ≤ m < 2) that is 2^(E−7) when m ≤ 254/128, else 2^(E−6).
 fn cell_exponent(extent: f32) -> u32 {
     let bits = extent.to_bits() & 0x7fff_ffff;
@@ -353,7 +353,7 @@ mod tests {
         [-b - s, -b + s].into_iter().find(|&t| t > 1e-4)
     }
 
-    /// Entry distance into the box (clamped to 0), as `box_entry` in bvh.wgsl.
+    /// Entry distance into the box (clamped to 0), as `slab_entry` in bvh.wgsl.
     fn box_entry((lo, hi): (Vec3, Vec3), origin: Vec3, inv_dir: Vec3, t_max: f32) -> Option<f32> {
         let t0 = (lo - origin) * inv_dir;
         let t1 = (hi - origin) * inv_dir;
