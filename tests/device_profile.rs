@@ -25,7 +25,7 @@ fn lavapipe_gets_its_own_profile_and_a_scene_its_tuning() {
     let kernels = profile.kernels.expect("lavapipe's kernels are described");
     assert!(!kernels.quick && kernels.vector_bits.is_some(), "{kernels:?}");
     assert_eq!(profile.scene_arrays, SceneArrays::Buffers);
-    assert!(profile.packets && profile.uniform_tree && profile.eye_tiles && profile.resolves_on_host && profile.spread && profile.one_walk_tree,
+    assert!(profile.packets && profile.uniform_tree && profile.eye_tiles && profile.resolves_on_host && profile.spread && profile.one_walk_tree && profile.mask_loops,
         "{profile:?}");
     assert_eq!(profile.packet_eye_rays, PACKET_EYE_RAYS);
     assert!(profile.describe().starts_with("lavapipe profile"), "{}", profile.describe());

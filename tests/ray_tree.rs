@@ -1,7 +1,8 @@
 //! The ray tree as the lecture reads it (shaders/lib/ray_tree.wgsl: an
 //! explicit stack of pending rays, a trace step, shading that casts its own
 //! shadow rays) and as lavapipe's profile walks it (shaders/fast/ray_tree.wgsl:
-//! one loop, one call of the BVH walk) trace the same rays in the same order:
+//! one loop, one call of the BVH walk; fast/push_rays.wgsl and
+//! flush_counts.wgsl: loops over bit masks) trace the same rays in the same order:
 //! the same pixels and ray counts in every view, bit for bit, and the same
 //! probed trees, for every kind of primitive, plain and tinted shadows,
 //! reflection, refraction, total internal reflection, depth cueing and the
@@ -14,16 +15,17 @@ use std::path::Path;
 use glint_encoding::gpu_types::View;
 use glint_gpu::probe::Prober;
 use glint_gpu::shaders::ShaderSource;
-use glint_gpu::{Acceleration, DeviceProfile, RenderOptions, Renderer};
+use glint_gpu::{Acceleration, DeviceProfile, RenderOptions, Renderer, Tuning};
 use glint_scene::Scene;
 
 /// Width and height odd, so that workgroups overhang the image's edges.
 const SIZE: (u32, u32) = (41, 29);
 
-/// A renderer on the test device with lavapipe's choices but the plain ray tree.
+/// A renderer on the test device with lavapipe's choices but the plain ray
+/// tree and loops.
 fn plain_tree_renderer() -> Renderer {
     let gpu = support::gpu();
-    let profile = DeviceProfile { one_walk_tree: false, ..*support::renderer().profile() };
+    let profile = DeviceProfile { one_walk_tree: false, mask_loops: false, ..*support::renderer().profile() };
     Renderer::with_profile(gpu.device.clone(), gpu.queue.clone(), &ShaderSource::Embedded, profile).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -34,12 +36,14 @@ fn assert_one_walk_traces_as_the_plain_tree(plain: &Renderer, scene: &Scene, wha
     let walked = support::renderer();
     let prepare = |r: &Renderer| r.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap_or_else(|e| panic!("{what}: {e}"));
     let (mut prepared, plain_prepared) = (prepare(walked), prepare(plain));
-    assert!(prepared.buffers.tuning().one_walk_tree() && !plain_prepared.buffers.tuning().one_walk_tree(), "{what}: the profiles' trees");
+    let lavapipe_shapes = |t: Tuning| t.one_walk_tree() && t.mask_loops();
+    let plain_shapes = |t: Tuning| !t.one_walk_tree() && !t.mask_loops();
+    assert!(lavapipe_shapes(prepared.buffers.tuning()) && plain_shapes(plain_prepared.buffers.tuning()), "{what}: the profiles' trees");
     let mut secondary = [0; 2];
     for view in View::ALL {
         let options = RenderOptions { view, spp: 2, seed: 7, view_scale: prepared.view_scale(view), ..Default::default() };
-        let mut render = |one_walk_tree| {
-            prepared.buffers.retune(prepared.buffers.tuning().with_one_walk_tree(one_walk_tree));
+        let mut render = |lavapipe: bool| {
+            prepared.buffers.retune(prepared.buffers.tuning().with_one_walk_tree(lavapipe).with_mask_loops(lavapipe));
             walked.render(&prepared.buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{what}: {e}"))
         };
         let ((one_walk, one_walk_stats), (recursive, recursive_stats)) = (render(true), render(false));
@@ -48,7 +52,7 @@ fn assert_one_walk_traces_as_the_plain_tree(plain: &Renderer, scene: &Scene, wha
         assert_eq!(recursive_stats, one_walk_stats, "{case}");
         secondary = [secondary[0] + recursive_stats.reflect, secondary[1] + recursive_stats.refract];
     }
-    prepared.buffers.retune(prepared.buffers.tuning().with_one_walk_tree(true));
+    prepared.buffers.retune(prepared.buffers.tuning().with_one_walk_tree(true).with_mask_loops(true));
     let (walked_prober, plain_prober) = (Prober::new(walked, &ShaderSource::Embedded).unwrap(), Prober::new(plain, &ShaderSource::Embedded).unwrap());
     for (x, y) in [(SIZE.0 / 2, SIZE.1 / 2), (SIZE.0 / 3, SIZE.1 * 2 / 3), (SIZE.0 * 3 / 4, SIZE.1 / 4), (0, SIZE.1 - 1)] {
         let options = RenderOptions::default();

@@ -4,7 +4,7 @@
 // through one call of `traverse`: lavapipe inlines a call's whole walk and
 // primitive tests, so a second call would be a second copy of them to compile
 // (docs/decisions/024-one-walk-in-the-trace-kernel.md).
-// import: bindings bvh checker dispatch notes primitive scene_arrays secondary_rays shade shadow types
+// import: bindings bvh checker dispatch notes primitive ray_stack scene_arrays secondary_rays shade shadow types
 
 // The deepest level this invocation's tree reached (the ray-depth view).
 var<private> deepest: u32;

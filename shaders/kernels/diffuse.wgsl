@@ -2,7 +2,7 @@
 // kernel apart from the primary one because its shadow rays are a second BVH
 // traversal, which every data view (depth, normal, id…) would otherwise
 // compile too (docs/decisions/008-diffuse-view-kernel.md).
-// import: bvh camera checker diffuse_view dispatch primitive scene_arrays
+// import: bvh camera checker diffuse_view dispatch flush_counts primitive scene_arrays
 
 @compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)
 fn diffuse_main(

@@ -5,7 +5,7 @@
 // picking run faster and compile sooner. An invocation traces the eye ray of
 // one pixel (`trace_eye_block`), or with PACKETS those of a 2×2 block of
 // pixels as one packet (fast/eye_bvh.wgsl, fast/eye_tiles.wgsl).
-// import: camera checker dispatch eye_block primitive scene_arrays types
+// import: camera checker dispatch eye_block flush_counts primitive scene_arrays types
 
 // What `view` shows of the eye ray `eye`'s closest hit, primitive `prim` at
 // distance `t` (or MISS), in the views of more than one number.
@@ -37,7 +37,7 @@ fn primary_main(
     let corner = band_pixel(wid, lid, groups, vec2<u32>(BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT), select(1u, 2u, PACKETS));
     let block = select(1u, 0xfu, PACKETS);
     let hits = trace_eye_block(corner, in_band(corner));
-    // The loop over the block's pixels steps through its bits, as trace_eye_rays does.
+    // The loop over the block's pixels steps through its bits, as fast/eye_rays.wgsl does.
     var hit_count = 0u;
     var miss_count = 0u;
     var left = block;

@@ -1,7 +1,7 @@
 // The trace kernel: one sample per pixel per dispatch, Whitted's ray tree
 // (lib/ray_tree.wgsl). The teaching views show the tree's size instead of its
 // colour: how deep it went, and how many rays it took.
-// import: camera dispatch ray_tree sample
+// import: camera dispatch flush_counts ray_tree sample
 
 @compute @workgroup_size(BAND_WORKGROUP_WIDTH, BAND_WORKGROUP_HEIGHT)
 fn trace_main(

@@ -74,21 +74,3 @@ fn write_pixel(pixel: vec2<u32>, value: vec3<f32>) {
 fn write_number(pixel: vec2<u32>, value: f32) {
     accum[accum_index(pixel)].x = value;
 }
-
-// Ray counts go to this workgroup's slot (of STAT_SLOTS): a workgroup barrier
-// to sum them first would cost more than the few uncontended atomics. The
-// atomics step through a bit mask of the kinds counted, a loop whose count
-// the compiler does not know, so it keeps one copy of the atomic instead of
-// one per kind (docs/decisions/024-one-walk-in-the-trace-kernel.md).
-fn flush_ray_counts(wid: vec3<u32>, groups: vec3<u32>) {
-    let base = ((wid.y * groups.x + wid.x) & (STAT_SLOTS - 1u)) * STAT_COUNT;
-    var counted = 0u;
-    for (var k = 0u; k < STAT_COUNT; k++) {
-        counted |= select(0u, 1u << k, local_stats[k] != 0u);
-    }
-    while counted != 0u {
-        let k = firstTrailingBit(counted);
-        counted &= counted - 1u;
-        atomicAdd(&stats[base + k], local_stats[k]);
-    }
-}

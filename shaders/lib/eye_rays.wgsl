@@ -1,4 +1,5 @@
-// The primary kernel's eye rays, one at a time through the BVH.
+// The primary kernel's eye rays, one at a time through the BVH. A tuning may
+// put fast/eye_rays.wgsl in this file's place.
 // import: bvh camera dispatch
 
 // The closest hits of the eye rays of a 2×2 block of pixels, ray k's in
@@ -11,18 +12,15 @@ struct EyeHits {
 
 // The eye rays through the centres of the pixels of the block whose top-left
 // pixel is `corner`, bit k of `block` for pixel k (block_pixel in dispatch.wgsl).
-// The loop steps through the bits, a count the compiler does not know, so it
-// keeps one copy of its body (docs/decisions/024-one-walk-in-the-trace-kernel.md).
 fn trace_eye_rays(corner: vec2<u32>, block: u32) -> EyeHits {
     var hits: EyeHits;
-    var left = block;
-    while left != 0u {
-        let k = firstTrailingBit(left);
-        left &= left - 1u;
-        let hit = traverse(camera_ray(vec2<f32>(block_pixel(corner, k)) + 0.5), 0.0, MISS, false, false);
-        hits.t[k] = hit.t;
-        hits.prim[k] = hit.prim;
-        hits.visited[k] = hit.nodes;
+    for (var k = 0u; k < 4u; k++) {
+        if (block & (1u << k)) != 0u {
+            let hit = traverse(camera_ray(vec2<f32>(block_pixel(corner, k)) + 0.5), 0.0, MISS, false, false);
+            hits.t[k] = hit.t;
+            hits.prim[k] = hit.prim;
+            hits.visited[k] = hit.nodes;
+        }
     }
     return hits;
 }

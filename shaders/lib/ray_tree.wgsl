@@ -6,7 +6,7 @@
 // is handed, ray by ray and term by term, to the `note_` functions of
 // lib/notes.wgsl, which do nothing; the probe kernel composes its own in their
 // place, which record the tree for `glint probe` and the viewer's inspector.
-// import: bindings bvh checker dispatch notes primitive scene_arrays secondary_rays shade shadow types
+// import: bindings bvh checker dispatch notes primitive ray_stack scene_arrays secondary_rays shade shadow types
 
 // The deepest level this invocation's tree reached (the ray-depth view).
 var<private> deepest: u32;

@@ -1,24 +1,7 @@
 // The branches of Whitted's ray tree: the reflected and refracted rays a
 // surface spawns, k_r·trace(reflect) + k_t·trace(refract), which wait on the
 // ray tree's stack with the weight their colour contributes to the pixel.
-// import: bindings dispatch notes primitive reflect refract shade types
-
-struct PendingRay {
-    ray: Ray,
-    weight: vec3<f32>,
-    depth: u32,
-    // RAY_EYE, RAY_REFLECT or RAY_REFRACT, and the id `note_ray` gave the ray it came from.
-    kind: u32,
-    parent: u32,
-}
-
-// Where the ray stack's entry `top` is kept. Without transmitters
-// (HAS_REFRACTIONS false) a surface spawns its reflected ray alone, so the
-// tree is a chain and the stack never holds more than one pending ray: at the
-// constant slot 0 it can live in registers (docs/decisions/009-ray-stack-of-the-scenes-depth.md).
-fn stack_slot(top: u32) -> u32 {
-    return select(0u, top, HAS_REFRACTIONS);
-}
+// import: bindings notes primitive push_rays ray_stack reflect refract shade types
 
 // Adds the shaded surface's local colour `local` (depth-cued) to `color` and
 // pushes the reflected and refracted rays it spawns, down to the maximum depth.
@@ -76,29 +59,5 @@ fn push_secondary_rays(
     if (uniforms.flags & FLAG_REFLECTIONS) == 0u {
         k_reflect = vec3<f32>(0.0);
     }
-    let eps = ray_epsilon(s.point);
-    let w_reflect = weight * k_reflect;
-    let w_refract = weight * k_refract;
-    // Bit 0: the reflected ray, bit 1: the refracted one.
-    var spawned = 0u;
-    if any(w_reflect > vec3<f32>(uniforms.cutoff)) && any(w_reflect > vec3<f32>(0.0)) {
-        count_ray(STAT_REFLECT);
-        spawned |= 1u;
-    }
-    if any(w_refract > vec3<f32>(uniforms.cutoff)) && any(w_refract > vec3<f32>(0.0)) {
-        count_ray(STAT_REFRACT);
-        spawned |= 2u;
-    }
-    // One push for both, in a loop whose count the compiler does not know, so
-    // it keeps one copy of the store into the stack (docs/decisions/024-one-walk-in-the-trace-kernel.md).
-    while spawned != 0u {
-        let refracted_ray = firstTrailingBit(spawned) == 1u;
-        spawned &= spawned - 1u;
-        let r = Ray(
-            s.point + select(eps, -eps, refracted_ray) * s.geometric,
-            select(reflect_dir(ray.dir, s.shading), refracted.xyz, refracted_ray),
-        );
-        (*stack)[stack_slot(*top)] = PendingRay(r, select(w_reflect, w_refract, refracted_ray), pending.depth + 1u, select(RAY_REFLECT, RAY_REFRACT, refracted_ray), id);
-        *top += 1u;
-    }
+    push_rays(pending, s, refracted.xyz, weight * k_reflect, weight * k_refract, id, stack, top);
 }

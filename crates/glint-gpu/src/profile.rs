@@ -129,6 +129,10 @@ pub struct DeviceProfile {
     /// (`Tuning::one_walk_tree`): lavapipe inlines each call, and compiles
     /// each copy (docs/decisions/024-one-walk-in-the-trace-kernel.md).
     pub one_walk_tree: bool,
+    /// Whether loops over a few cases step through bit masks
+    /// (`Tuning::mask_loops`): lavapipe unrolls a loop whose count it knows,
+    /// and compiles each copy (docs/decisions/057-loops-over-bit-masks.md).
+    pub mask_loops: bool,
     /// The workgroups of the kernels that trace row bands.
     pub workgroups: WorkgroupSizes,
 }
@@ -181,6 +185,7 @@ impl DeviceProfile {
             resolves_on_host: info.device_type == wgpu::DeviceType::Cpu && info.backend != wgpu::Backend::BrowserWebGpu,
             spread: tuned || eye_tiles,
             one_walk_tree: tuned,
+            mask_loops: tuned,
             workgroups: if tuned { WorkgroupSizes::LAVAPIPE } else { WorkgroupSizes::PLAIN },
         }
     }
@@ -213,6 +218,7 @@ impl DeviceProfile {
             eye_tiles: false,
             spread: self.spread,
             one_walk_tree: self.one_walk_tree,
+            mask_loops: self.mask_loops,
             workgroups: self.workgroups,
         }
     }
@@ -294,6 +300,7 @@ pub(crate) mod tests {
                 resolves_on_host: true,
                 spread: true,
                 one_walk_tree: true,
+                mask_loops: true,
                 workgroups: WorkgroupSizes::LAVAPIPE,
             };
             assert_eq!(optimised, want);
@@ -332,6 +339,7 @@ pub(crate) mod tests {
                     resolves_on_host: false,
                     spread: false,
                     one_walk_tree: false,
+                    mask_loops: false,
                     workgroups: WorkgroupSizes::PLAIN,
                 };
                 assert_eq!(profile, plain, "{name}, quick kernels asked: {quick_kernels}");
@@ -349,7 +357,7 @@ pub(crate) mod tests {
         let profile = DeviceProfile::of(&small_groups, wgpu::Features::SUBGROUP, true);
         assert!(profile.eye_tiles && profile.packets && profile.spread, "{profile:?}");
         assert!(profile.tuning(&empty_scene(), &Workload::render(1, 1, false)).packets, "eye tiles repay packets at once");
-        assert!(!profile.uniform_tree && !profile.one_walk_tree && profile.scene_arrays == SceneArrays::Buffers);
+        assert!(!profile.uniform_tree && !profile.one_walk_tree && !profile.mask_loops && profile.scene_arrays == SceneArrays::Buffers);
         assert_eq!(profile.workgroups, WorkgroupSizes::PLAIN);
         assert!(!DeviceProfile::of(&small_groups, wgpu::Features::empty(), false).eye_tiles, "no subgroup operations");
     }

@@ -206,7 +206,7 @@ impl Renderer {
     /// Single rays reading the scene as this renderer binds it, and the ray
     /// tree the profile walks: for kernels that serve any scene (the probe's).
     pub(crate) fn plain_tuning(&self) -> Tuning {
-        Tuning { arrays: self.profile.scene_arrays, one_walk_tree: self.profile.one_walk_tree, ..Tuning::PLAIN }
+        Tuning { arrays: self.profile.scene_arrays, one_walk_tree: self.profile.one_walk_tree, mask_loops: self.profile.mask_loops, ..Tuning::PLAIN }
     }
 
     /// Creates the pipelines of `kernels` for `scene` now (those not made

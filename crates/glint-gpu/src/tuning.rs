@@ -61,6 +61,12 @@ pub struct Tuning {
     /// one query, a ray of the tree or a shadow ray, through one call of the
     /// BVH walk (shaders/fast/ray_tree.wgsl), which lavapipe compiles once.
     pub(crate) one_walk_tree: bool,
+    /// Loops over a few cases (a 2×2 block's eye rays, a surface's reflected
+    /// and refracted ray, the kinds of rays counted) step through a bit mask
+    /// of the cases, a count the compiler does not know, so that lavapipe
+    /// compiles their bodies once (shaders/fast/eye_rays.wgsl, push_rays.wgsl
+    /// and flush_counts.wgsl; docs/decisions/057-loops-over-bit-masks.md).
+    pub(crate) mask_loops: bool,
     /// The workgroups of the kernels that trace row bands.
     pub(crate) workgroups: WorkgroupSizes,
 }
@@ -109,7 +115,7 @@ pub struct StandIn {
 }
 
 /// Every stand-in; the first that a tuning asks for takes the plain file's place.
-pub const STAND_INS: [StandIn; 7] = [
+pub const STAND_INS: [StandIn; 10] = [
     StandIn { plain: "lib/scene_arrays.wgsl", fast: "fast/scene_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
     StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/uniform_tree.wgsl", when: |t| t.uniform_tree },
     StandIn { plain: "lib/bvh_records.wgsl", fast: "fast/bvh_textures.wgsl", when: |t| t.arrays == SceneArrays::Textures },
@@ -117,6 +123,9 @@ pub const STAND_INS: [StandIn; 7] = [
     StandIn { plain: "lib/eye_block.wgsl", fast: "fast/eye_bvh.wgsl", when: |t| t.packets },
     StandIn { plain: "lib/band_order.wgsl", fast: "fast/spread.wgsl", when: |t| t.spread },
     StandIn { plain: "lib/ray_tree.wgsl", fast: "fast/ray_tree.wgsl", when: |t| t.one_walk_tree },
+    StandIn { plain: "lib/eye_rays.wgsl", fast: "fast/eye_rays.wgsl", when: |t| t.mask_loops },
+    StandIn { plain: "lib/push_rays.wgsl", fast: "fast/push_rays.wgsl", when: |t| t.mask_loops },
+    StandIn { plain: "lib/flush_counts.wgsl", fast: "fast/flush_counts.wgsl", when: |t| t.mask_loops },
 ];
 
 impl Tuning {
@@ -129,6 +138,7 @@ impl Tuning {
         eye_tiles: false,
         spread: false,
         one_walk_tree: false,
+        mask_loops: false,
         workgroups: WorkgroupSizes::PLAIN,
     };
 
@@ -156,6 +166,10 @@ impl Tuning {
         self.one_walk_tree
     }
 
+    pub fn mask_loops(self) -> bool {
+        self.mask_loops
+    }
+
     pub fn workgroups(self) -> WorkgroupSizes {
         self.workgroups
     }
@@ -175,6 +189,7 @@ impl Tuning {
         eye_tiles: true,
         spread: true,
         one_walk_tree: true,
+        mask_loops: true,
         workgroups: WorkgroupSizes::LAVAPIPE,
     };
 
@@ -188,7 +203,9 @@ impl Tuning {
                 let [packets, uniform_tree, eye_tiles, spread, one_walk_tree] = [0, 1, 2, 3, 4].map(|b| bits & (1 << b) != 0);
                 // Eye tiles hand SIMD groups blocks of one tile in spread order.
                 if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree, workgroups: WorkgroupSizes::LAVAPIPE });
+                    // Both of lavapipe's ways of compiling once come together.
+                    let mask_loops = one_walk_tree;
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree, mask_loops, workgroups: WorkgroupSizes::LAVAPIPE });
                 }
             }
         }
@@ -213,6 +230,7 @@ impl Tuning {
             (self.eye_tiles, "eye-tiles"),
             (self.spread, "spread"),
             (self.one_walk_tree, "one-walk-tree"),
+            (self.mask_loops, "mask-loops"),
         ];
         let chosen = choices.iter().filter(|(on, _)| *on).map(|(_, name)| name.to_string());
         let workgroups = (self.workgroups != WorkgroupSizes::PLAIN).then(|| self.workgroups.name());
@@ -295,6 +313,10 @@ impl Tuning {
 
     pub fn with_one_walk_tree(self, one_walk_tree: bool) -> Tuning {
         Tuning { one_walk_tree, ..self }
+    }
+
+    pub fn with_mask_loops(self, mask_loops: bool) -> Tuning {
+        Tuning { mask_loops, ..self }
     }
 
     pub fn with_workgroups(self, workgroups: WorkgroupSizes) -> Tuning {
@@ -385,7 +407,7 @@ mod tests {
         let fast = Tuning::LAVAPIPE;
         assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, ..fast });
         assert_eq!(fast.block_side(Kernel::Primary), 2);
-        let trace = Tuning { uniform_tree: true, spread: true, one_walk_tree: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
+        let trace = Tuning { uniform_tree: true, spread: true, one_walk_tree: true, mask_loops: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
         assert_eq!(fast.for_kernel(Kernel::Trace), trace);
         assert_eq!(fast.for_kernel(Kernel::Probe), Tuning { workgroups: WorkgroupSizes::PLAIN, ..trace }, "the probe traces no bands");
         assert_eq!(fast.for_kernel(Kernel::Diffuse), Tuning { one_walk_tree: false, ..trace });
