@@ -4,7 +4,6 @@
 use std::time::Duration;
 
 use web_time::Instant;
-use glam::Vec3;
 use glint_encoding::gpu_bvh::GpuBvh;
 use glint_encoding::gpu_types::{self, View, UNIFORM_TREE_RECORDS};
 use glint_scene::bvh::Bvh;
@@ -12,6 +11,7 @@ use glint_scene::polygon_split;
 use glint_scene::Scene;
 
 use glint_encoding::eye_tiles::Footprints;
+use crate::depth_extent::Corners;
 use crate::{GpuError, Renderer, SceneBuffers};
 
 /// How the primitives are organised for traversal.
@@ -38,7 +38,7 @@ pub struct Prepared {
     pub depth_extent: f32,
     /// The corners of the scene's primitives' bounds (before large polygons
     /// are cut) that `pose` measures `depth_extent` to: a pose moves none.
-    posed_corners: Vec<Vec3>,
+    posed_corners: Corners,
     /// The scene's longest ray path and its lights, which bound the ray tree.
     pub max_depth: u32,
     pub lights: u32,
@@ -63,7 +63,7 @@ impl Renderer {
     /// Builds the acceleration structure, packs and uploads `scene` for an image
     /// of `width` × `height`.
     pub fn prepare(&self, scene: &Scene, width: u32, height: u32, acceleration: Acceleration) -> Result<Prepared, GpuError> {
-        let posed_corners = bound_corners(&gpu_types::primitive_bounds(scene));
+        let posed_corners = Corners::new(&gpu_types::primitive_bounds(scene));
         // Validated as the kernels get it, sectors and all.
         let scene = &*polygon_split::split_large_polygons(scene);
         scene.validate()?;
@@ -100,7 +100,7 @@ impl Renderer {
             bvh_build,
             footprints,
             eye_tiles_build,
-            depth_extent: depth_extent(&bound_corners(&bounds), scene.camera.eye),
+            depth_extent: Corners::new(&bounds).farthest(scene.camera.eye),
             posed_corners,
             max_depth: scene.render.max_depth,
             lights: packed.light_count,
@@ -125,17 +125,8 @@ impl Renderer {
         if !buffers.tuning.eye_tiles && prepared.eye_tiles_build.is_some() {
             self.bin_eye_tiles(buffers, &prepared.footprints, &uniforms.camera);
         }
-        prepared.depth_extent = depth_extent(&prepared.posed_corners, scene.camera.eye);
+        prepared.depth_extent = prepared.posed_corners.farthest(scene.camera.eye);
         Ok(())
     }
 }
 
-/// Each box's lowest and highest corner.
-fn bound_corners(bounds: &[(Vec3, Vec3)]) -> Vec<Vec3> {
-    bounds.iter().flat_map(|&(lo, hi)| [lo, hi]).collect()
-}
-
-/// The distance from `eye` to the farthest of `corners`.
-fn depth_extent(corners: &[Vec3], eye: Vec3) -> f32 {
-    corners.iter().map(|corner| corner.distance(eye)).fold(0.0f32, f32::max).max(f32::MIN_POSITIVE)
-}

@@ -10,6 +10,7 @@
 //! Front ends describe their work (`Workload`); the driver's environment and
 //! the kernels' tuning are this crate's alone to choose.
 
+mod depth_extent;
 mod device;
 mod error_scope;
 pub mod display;
