@@ -157,3 +157,60 @@ fn eye_tiles_follow_the_camera() {
     renderer.pose(&mut prepared, &scene).unwrap();
     support::assert_images_equal(&depth(&prepared.buffers).linear, &unmoved.linear, 0, "camera posed back");
 }
+
+/// A view whose primitives would give each eye tile more than
+/// `MAX_MEAN_ENTRIES` on average is not binned, and its eye rays walk the BVH
+/// one at a time rather than as packets that would part at almost every leaf
+/// (docs/decisions/058-single-eye-rays-where-tiles-are-refused.md); a view of
+/// the scene that bins gets its tiles and packets back. Each traces the bits
+/// the plain profile traces.
+#[test]
+fn a_view_too_crowded_to_bin_traces_single_eye_rays() {
+    // 16×8 pixels are four tiles of 8×4. Six layers of spheres, one behind
+    // the other, each over most pixel centres, make more than four times
+    // MAX_MEAN_ENTRIES entries.
+    let (width, height) = (16, 8);
+    assert_eq!(glint_encoding::eye_tiles::MAX_MEAN_ENTRIES, 64, "the scene is sized for 64 entries a tile");
+    let mut toml = format!("[image]\nwidth = {width}\nheight = {height}\n\n[camera]\neye = [0, 0, 10]\nlook_at = [0, 0, 0]\nfov = 40\n\n[[light]]\ntype = \"point\"\nposition = [2, 4, 12]\n");
+    for layer in 0..6 {
+        for i in 0..24 {
+            for j in 0..12 {
+                let (x, y, z) = (-3.5 + 0.3 * f64::from(i), -1.75 + 0.3 * f64::from(j), -f64::from(layer));
+                toml += &format!("\n[[object]]\ntype = \"sphere\"\ncenter = [{x:.2}, {y:.2}, {z}]\nradius = 0.25\n");
+            }
+        }
+    }
+    // Off to the side, alone in a view of its own.
+    toml += "\n[[object]]\ntype = \"sphere\"\ncenter = [20, 0, 0]\nradius = 1\n";
+    let crowded = support::parse(&toml);
+    let mut aside = crowded.clone();
+    (aside.camera.eye, aside.camera.look_at) = (glam::Vec3::new(20.0, 0.0, 5.0), glam::Vec3::new(20.0, 0.0, 0.0));
+
+    let renderer = support::renderer();
+    let render = |buffers: &glint_gpu::SceneBuffers, scene: &Scene, view: View, what: &str| {
+        let options = RenderOptions { view, ..Default::default() };
+        let (image, stats) = renderer.render(buffers, &options, &mut |_, _| {}).unwrap_or_else(|e| panic!("{e}"));
+        let (want, want_stats) = support::render_options(scene, Acceleration::Bvh, options);
+        support::assert_images_equal(&image.linear, &want.linear, 0, &format!("{what}, {view:?} view"));
+        assert_eq!(stats, want_stats, "{what}, {view:?} view");
+        assert!(stats.eye_hit > 0, "{what}: the spheres are in view");
+    };
+    let single_rays = |t: glint_gpu::Tuning| !t.eye_tiles() && !t.packets();
+    let tiles = |t: glint_gpu::Tuning| t.eye_tiles() && t.packets();
+
+    let prepared = renderer.prepare(&crowded, width, height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+    assert!(single_rays(prepared.buffers.tuning()), "prepared for the crowded view: {:?}", prepared.buffers.tuning());
+    for view in [View::Depth, View::Albedo] {
+        render(&prepared.buffers, &crowded, view, "prepared for the crowded view");
+    }
+
+    // A camera move from a view that bins to the crowded one and back.
+    let mut prepared = renderer.prepare(&aside, width, height, Acceleration::Bvh).unwrap_or_else(|e| panic!("{e}"));
+    assert!(tiles(prepared.buffers.tuning()), "a view of one sphere is binned: {:?}", prepared.buffers.tuning());
+    renderer.pose(&mut prepared, &crowded).unwrap_or_else(|e| panic!("{e}"));
+    assert!(single_rays(prepared.buffers.tuning()), "posed for the crowded view: {:?}", prepared.buffers.tuning());
+    render(&prepared.buffers, &crowded, View::Depth, "posed for the crowded view");
+    renderer.pose(&mut prepared, &aside).unwrap_or_else(|e| panic!("{e}"));
+    assert!(tiles(prepared.buffers.tuning()), "posed back: binned again: {:?}", prepared.buffers.tuning());
+    render(&prepared.buffers, &aside, View::Depth, "posed back");
+}

@@ -6,7 +6,7 @@
 use glint_encoding::eye_tiles::Footprints;
 use glint_encoding::gpu_types::{DispatchParams, GpuCamera, EYE_TILE_HEIGHT, EYE_TILE_WIDTH};
 
-use crate::{Renderer, SceneBuffers};
+use crate::{Renderer, SceneBuffers, Tuning};
 
 /// A scene's eye tiles as bound: the lists, for the camera they were built
 /// for (none: lists no kernel reads), and the primitives' buffer to bind
@@ -19,6 +19,10 @@ pub(crate) struct EyeTileBinding {
     /// ones while they fit, so a camera move allocates nothing on the device
     /// (docs/decisions/048-cheaper-eye-tile-binning.md).
     lists: wgpu::Buffer,
+    /// The view's primitives were too many to bin: packets walking the BVH
+    /// for it would part at almost every leaf, so its eye rays are traced
+    /// one at a time (docs/decisions/058-single-eye-rays-where-tiles-are-refused.md).
+    crowded: bool,
 }
 
 pub(crate) fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -47,10 +51,14 @@ impl Renderer {
     /// trace them and they are short enough to repay it; else the kernels walk
     /// the BVH. True when the scene now has eye tiles.
     pub(crate) fn bin_eye_tiles(&self, scene: &mut SceneBuffers, footprints: &Footprints, camera: &GpuCamera) -> bool {
-        let tiles = self.profile.eye_tiles.then(|| footprints.bin(camera, scene.width, scene.height)).flatten();
-        let limit = self.device.limits().max_storage_buffer_binding_size;
-        let Some(tiles) = tiles.filter(|t| (t.words.len() as u64) * 4 <= limit) else {
+        if !self.profile.eye_tiles {
             scene.forget_view();
+            return false;
+        }
+        let limit = self.device.limits().max_storage_buffer_binding_size;
+        let Some(tiles) = footprints.bin(camera, scene.width, scene.height).filter(|t| (t.words.len() as u64) * 4 <= limit) else {
+            scene.forget_view();
+            scene.eye_tiles.crowded = true;
             return false;
         };
         let bytes: &[u8] = bytemuck::cast_slice(&tiles.words);
@@ -61,6 +69,7 @@ impl Renderer {
         }
         self.queue.write_buffer(&scene.eye_tiles.lists, 0, bytes);
         scene.eye_tiles.camera = Some(*camera);
+        scene.eye_tiles.crowded = false;
         scene.tuning.eye_tiles = true;
         true
     }
@@ -75,7 +84,7 @@ impl Renderer {
                 wgpu::BindGroupEntry { binding: 1, resource: prims.as_entire_binding() },
             ],
         });
-        EyeTileBinding { bind, camera: None, prims, lists }
+        EyeTileBinding { bind, camera: None, prims, lists, crowded: false }
     }
 }
 
@@ -88,6 +97,7 @@ impl SceneBuffers {
     /// only if they were built for it.
     pub(crate) fn aim_eye_tiles(&mut self, camera: &GpuCamera) {
         self.tuning.eye_tiles = self.eye_tiles.camera.as_ref() == Some(camera);
+        self.eye_tiles.crowded &= !self.tuning.eye_tiles;
     }
 
     /// Leaves the lists built for no view, as a camera move does, so that the
@@ -96,10 +106,23 @@ impl SceneBuffers {
         self.eye_tiles.camera = None;
         self.tuning.eye_tiles = false;
     }
+
+    /// The tuning the current view's dispatches run: single eye rays where
+    /// the view was too crowded to bin.
+    pub(crate) fn view_tuning(&self) -> Tuning {
+        if self.eye_tiles.crowded { self.tuning.with_single_eye_rays() } else { self.tuning }
+    }
+
+    /// The tuning a dispatch over `region` runs: without eye tiles where its
+    /// workgroups start off the tiles' corners (a pick's pixel).
+    pub(crate) fn dispatch_tuning(&self, region: &DispatchParams) -> Tuning {
+        let tuning = self.view_tuning();
+        if tiles_align(region) { tuning } else { tuning.without_eye_tiles() }
+    }
 }
 
 /// Whether a dispatch over `region` hands each SIMD group blocks of one tile:
 /// its workgroups start on tile corners.
-pub(crate) fn tiles_align(region: &DispatchParams) -> bool {
+fn tiles_align(region: &DispatchParams) -> bool {
     region.origin[0].is_multiple_of(EYE_TILE_WIDTH) && region.origin[1].is_multiple_of(EYE_TILE_HEIGHT)
 }

@@ -45,9 +45,10 @@ pub struct RayCounter {
 }
 
 impl SceneBuffers {
-    /// How its kernels are tuned: glint-gpu's choice, which front ends read.
+    /// How its kernels are tuned for the current view: glint-gpu's choice,
+    /// which front ends read.
     pub fn tuning(&self) -> Tuning {
-        self.tuning
+        self.view_tuning()
     }
 
     /// Tunes its kernels by hand (tests of each variant; the `variants` feature).

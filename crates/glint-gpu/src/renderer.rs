@@ -212,13 +212,13 @@ impl Renderer {
     /// Creates the pipelines of `kernels` for `scene` now (those not made
     /// yet), so a shader the driver rejects fails before any work is done.
     pub fn create_pipelines(&self, scene: &SceneBuffers, kernels: &[Kernel]) -> Result<(), GpuError> {
-        self.pipelines.create(kernels, scene.specialization, scene.tuning)
+        self.pipelines.create(kernels, scene.specialization, scene.view_tuning())
     }
 
     /// Creates now the pipelines that dispatches of `views` on `scene` use.
     pub fn create_view_pipelines(&self, scene: &SceneBuffers, views: &[View]) -> Result<(), GpuError> {
         for &view in views {
-            self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view), scene.tuning)?;
+            self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view), scene.view_tuning())?;
         }
         Ok(())
     }
@@ -395,7 +395,7 @@ impl Renderer {
         tile: &mut dyn FnMut(Region, Image) -> Result<(), GpuError>,
     ) -> Result<RayStats, GpuError> {
         check_region(scene, region)?;
-        self.pipelines.get(kernel_for(options.view), scene.specialization.dispatching(options.view), scene.tuning)?;
+        self.pipelines.get(kernel_for(options.view), scene.specialization.dispatching(options.view), scene.view_tuning())?;
         if !self.profile.resolves_on_host {
             self.pipelines.get(Kernel::Resolve, Specialization::ALL, Tuning::PLAIN)?;
         }
@@ -530,7 +530,7 @@ impl Renderer {
     ) -> Result<(), GpuError> {
         let kernel = kernel_for(view);
         let specialization = scene.specialization.dispatching(view);
-        let tuning = if eye_tiles::tiles_align(&region) { scene.tuning } else { scene.tuning.without_eye_tiles() };
+        let tuning = scene.dispatch_tuning(&region);
         let pipeline = self.pipelines.get(kernel, specialization, tuning)?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));

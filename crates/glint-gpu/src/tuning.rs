@@ -180,6 +180,12 @@ impl Tuning {
         Tuning { eye_tiles: false, ..self }
     }
 
+    /// This tuning as dispatched for a view too crowded to bin into eye
+    /// tiles: each eye ray walks the BVH alone.
+    pub(crate) fn with_single_eye_rays(self) -> Tuning {
+        Tuning { packets: false, eye_tiles: false, ..self }
+    }
+
     /// Every choice of lavapipe's profile at once, eye tiles included: what
     /// tests hold the plain tuning's bits to.
     pub const LAVAPIPE: Tuning = Tuning {
