@@ -135,7 +135,7 @@ fn eye_tiles_follow_the_camera() {
     let want = depth(&fresh.buffers);
 
     let mut prepared = renderer.prepare(&scene, SIZE.0, SIZE.1, Acceleration::Bvh).unwrap();
-    let uniforms = glint_encoding::gpu_types::scene_uniforms(&moved, SIZE.0, SIZE.1, prepared.lights, prepared.buffers.bvh_root());
+    let uniforms = glint_encoding::gpu_types::scene_uniforms(&moved, SIZE.0, SIZE.1, prepared.lights, prepared.buffers.layout());
     renderer.write_uniforms(&mut prepared.buffers, &uniforms).unwrap();
     assert!(!prepared.buffers.tuning().eye_tiles(), "the tiles of the old view are not walked");
     support::assert_images_equal(&depth(&prepared.buffers).linear, &want.linear, 0, "camera moved in place");

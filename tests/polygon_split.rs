@@ -14,7 +14,7 @@ use glint_scene::Scene;
 fn upload_whole(scene: &Scene) -> SceneBuffers {
     let bvh = Bvh::build(&gpu_types::primitive_bounds(scene));
     let packed = gpu_types::pack(scene, &bvh.order, GpuBvh::encode(&bvh).unwrap());
-    let uniforms = gpu_types::scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.bvh_root);
+    let uniforms = gpu_types::scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.layout());
     support::renderer().upload(&packed, uniforms).unwrap()
 }
 

@@ -23,7 +23,7 @@ fn main() {
     let packed = gpu_types::pack(&scene, &bvh.order, GpuBvh::encode(&bvh).expect("an encodable BVH"));
     let ordered: Vec<(Vec3, Vec3)> = bvh.order.iter().map(|&i| bounds[i as usize]).collect();
     let footprints = Footprints::new(&packed, &ordered);
-    let camera = gpu_types::scene_uniforms(&scene, 512, 512, 0, 0).camera;
+    let camera = gpu_types::scene_uniforms(&scene, 512, 512, 0, Default::default()).camera;
     let mut times: Vec<f64> = (0..rounds)
         .map(|_| {
             let start = Instant::now();

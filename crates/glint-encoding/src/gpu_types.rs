@@ -273,7 +273,7 @@ pub struct SceneUniforms {
     /// The BVH record traversal starts from (`GpuScene::bvh_root`).
     pub bvh_root: u32,
     /// The infinite planes, `prims[plane_first .. plane_first + plane_count]`,
-    /// which every ray tests besides the BVH ([`plane_range`]).
+    /// which every ray tests besides the BVH ([`GpuScene::planes`]).
     pub plane_first: u32,
     pub plane_count: u32,
     pub _pad0: u32,
@@ -419,9 +419,26 @@ pub struct GpuScene {
     /// Polygon vertices and triangle vertex normals, xyz + unused w.
     pub points: Vec<[f32; 4]>,
     pub light_count: u32,
+    /// Where the infinite planes are among `prims`, (first, count): after
+    /// the BVH's primitives, in object order.
+    pub planes: (u32, u32),
+}
+
+/// What the uniforms take from a packed scene rather than from its camera
+/// and settings: where the BVH's walk starts and where the infinite planes
+/// are. A new view reuses it instead of counting the scene's shapes again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PackedLayout {
+    pub bvh_root: u32,
+    pub plane_first: u32,
+    pub plane_count: u32,
 }
 
 impl GpuScene {
+    pub fn layout(&self) -> PackedLayout {
+        PackedLayout { bvh_root: self.bvh_root, plane_first: self.planes.0, plane_count: self.planes.1 }
+    }
+
     pub fn byte_size(&self) -> usize {
         std::mem::size_of_val(self.prims.as_slice())
             + std::mem::size_of_val(self.nodes.as_slice())
@@ -439,15 +456,9 @@ pub fn primitive_bounds(scene: &Scene) -> Vec<(Vec3, Vec3)> {
     scene.objects.iter().flat_map(|o| o.shapes.iter().filter_map(Shape::bounds)).collect()
 }
 
-/// Where the infinite planes are packed, (first, count): after the BVH's
-/// primitives, in object order.
-pub fn plane_range(scene: &Scene) -> (u32, u32) {
-    let planes = scene.objects.iter().flat_map(|o| &o.shapes).filter(|s| !s.is_bounded()).count();
-    ((scene.primitive_count() - planes) as u32, planes as u32)
-}
 
 /// Packs the scene's bounded primitives in `order` (the BVH's leaf order,
-/// `Bvh::order`), then its infinite planes ([`plane_range`]), with the BVH in
+/// `Bvh::order`), then its infinite planes ([`GpuScene::planes`]), with the BVH in
 /// the kernel's layout.
 pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
     let (bounded, planes): (Vec<(u32, &Shape, usize)>, Vec<_>) = scene
@@ -456,6 +467,7 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
         .enumerate()
         .flat_map(|(id, o)| o.shapes.iter().map(move |s| (id as u32, s, o.material)))
         .partition(|(_, shape, _)| shape.is_bounded());
+    let plane_range = (bounded.len() as u32, planes.len() as u32);
     let mut points = Vec::new();
     let mut prims: Vec<GpuPrim> = order
         .iter()
@@ -479,7 +491,7 @@ pub fn pack(scene: &Scene, order: &[u32], bvh: GpuBvh) -> GpuScene {
     let light_count = lights.len() as u32;
     // The kernels bind the whole array (MAX_LIGHTS).
     lights.resize(MAX_LIGHTS as usize, Zeroable::zeroed());
-    GpuScene { prims, nodes: bvh.nodes, grids: bvh.grids, bvh_root: bvh.root, materials, lights, points, light_count }
+    GpuScene { prims, nodes: bvh.nodes, grids: bvh.grids, bvh_root: bvh.root, materials, lights, points, light_count, planes: plane_range }
 }
 
 pub fn pack_material(m: &glint_scene::Material) -> GpuMaterial {
@@ -531,7 +543,7 @@ pub fn pack_light(l: &glint_scene::Light) -> GpuLight {
 
 /// The uniforms for rendering `scene` at `width` × `height` with `light_count`
 /// lights uploaded and traversal starting at `bvh_root`.
-pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, bvh_root: u32) -> SceneUniforms {
+pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, layout: PackedLayout) -> SceneUniforms {
     let basis = scene.camera.basis().expect("scene loaders reject cameras without a basis");
     let (half_width, half_height) = scene.camera.half_extents(width, height);
     let projection = match scene.camera.projection {
@@ -562,7 +574,7 @@ pub fn scene_uniforms(scene: &Scene, width: u32, height: u32, light_count: u32, 
         }
         None => ([0.0; 3], [0.0; 4]),
     };
-    let (plane_first, plane_count) = plane_range(scene);
+    let PackedLayout { bvh_root, plane_first, plane_count } = layout;
     SceneUniforms {
         camera: GpuCamera {
             eye: scene.camera.eye.into(),
@@ -643,8 +655,8 @@ normal = [0, 0, -1]
         assert_eq!(bounds.len(), 2, "the sphere and the rectangle (a polygon)");
         let bvh = glint_scene::bvh::Bvh::build(&bounds);
         let packed = pack(&scene, &bvh.order, GpuBvh::encode(&bvh).unwrap());
-        assert_eq!(plane_range(&scene), (2, 2));
-        let uniforms = scene_uniforms(&scene, 8, 8, packed.light_count, packed.bvh_root);
+        assert_eq!(packed.planes, (2, 2));
+        let uniforms = scene_uniforms(&scene, 8, 8, packed.light_count, packed.layout());
         assert_eq!((uniforms.plane_first, uniforms.plane_count), (2, 2));
         let planes = &packed.prims[2..4];
         assert_eq!(planes.iter().map(|p| (p.kind_material & 0xff, p.object)).collect::<Vec<_>>(), [(PRIM_PLANE, 1), (PRIM_PLANE, 3)]);

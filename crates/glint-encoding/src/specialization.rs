@@ -239,6 +239,7 @@ mod tests {
             lights: Vec::new(),
             points: Vec::new(),
             light_count: 0,
+            planes: (0, 0),
         }
     }
 

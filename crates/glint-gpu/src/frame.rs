@@ -80,7 +80,7 @@ impl Renderer {
         let gpu_bvh = GpuBvh::encode(&bvh)?;
         let bvh_build = start.elapsed();
         let packed = gpu_types::pack(scene, &bvh.order, gpu_bvh);
-        let uniforms = gpu_types::scene_uniforms(scene, width, height, packed.light_count, packed.bvh_root);
+        let uniforms = gpu_types::scene_uniforms(scene, width, height, packed.light_count, packed.layout());
         let mut buffers = self.upload(&packed, uniforms)?;
         // Brute force is the reference the BVH is checked against: every ray
         // tests every primitive, from no list.
@@ -120,7 +120,7 @@ impl Renderer {
         if !lights.is_empty() {
             self.write_lights(buffers, &lights)?;
         }
-        let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.bvh_root());
+        let uniforms = gpu_types::scene_uniforms(scene, buffers.width(), buffers.height(), prepared.lights, buffers.layout());
         self.write_uniforms(buffers, &uniforms)?;
         if !buffers.tuning.eye_tiles && prepared.eye_tiles_build.is_some() {
             self.bin_eye_tiles(buffers, &prepared.footprints, &uniforms.camera);

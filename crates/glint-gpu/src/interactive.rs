@@ -7,7 +7,7 @@ use std::ops::Range;
 use std::sync::{Arc, Mutex};
 
 use bytemuck::Zeroable;
-use glint_encoding::gpu_types::{DispatchParams, GpuLight, GpuMaterial, ResolveParams, SceneUniforms, View};
+use glint_encoding::gpu_types::{DispatchParams, GpuLight, GpuMaterial, PackedLayout, ResolveParams, SceneUniforms, View};
 use glint_encoding::specialization::Specialization;
 
 use crate::error_scope::ErrorScope;
@@ -67,7 +67,13 @@ impl SceneBuffers {
 
     /// The BVH record traversal starts from, for `gpu_types::scene_uniforms`.
     pub fn bvh_root(&self) -> u32 {
-        self.bvh_root
+        self.layout.bvh_root
+    }
+
+    /// Where its BVH's walk starts and where its planes are, for
+    /// `scene_uniforms` when the view changes.
+    pub fn layout(&self) -> PackedLayout {
+        self.layout
     }
 
     /// How many lights the lights buffer holds.
@@ -195,7 +201,10 @@ impl Renderer {
     /// must be for the buffers' image size and BVH root, and a scene uploaded
     /// for its own settings (opaque shadows, no depth cue) takes no others.
     pub fn write_uniforms(&self, scene: &mut SceneBuffers, uniforms: &SceneUniforms) -> Result<(), GpuError> {
-        debug_assert_eq!((uniforms.width, uniforms.height, uniforms.bvh_root), (scene.width, scene.height, scene.bvh_root));
+        debug_assert_eq!(
+            (uniforms.width, uniforms.height, uniforms.bvh_root, uniforms.plane_first, uniforms.plane_count),
+            (scene.width, scene.height, scene.layout.bvh_root, scene.layout.plane_first, scene.layout.plane_count)
+        );
         if !scene.specialization.covers_uniforms(uniforms) {
             return Err(GpuError::Runtime(format!(
                 "the scene was uploaded for its own settings ({}): tinted shadows, depth cueing or a deeper ray tree need it uploaded editable",

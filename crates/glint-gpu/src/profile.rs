@@ -275,6 +275,7 @@ pub(crate) mod tests {
             lights: Vec::new(),
             points: Vec::new(),
             light_count: 0,
+            planes: (0, 0),
         }
     }
 

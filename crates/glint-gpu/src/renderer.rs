@@ -5,7 +5,7 @@ use std::sync::{Arc, Mutex};
 use web_time::Instant;
 
 use glint_encoding::gpu_types::{
-    DispatchParams, Filter, GpuScene, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
+    DispatchParams, Filter, GpuScene, PackedLayout, ResolveParams, SceneUniforms, View, STAT_COUNT, STAT_SLOTS, TONE_ACES, TONE_CLAMP, TONE_REINHARD,
     UNIFORM_ARRAY_BYTES,
 };
 use glint_encoding::specialization::Specialization;
@@ -102,7 +102,7 @@ pub struct Renderer {
 pub struct SceneBuffers {
     pub(crate) width: u32,
     pub(crate) height: u32,
-    pub(crate) bvh_root: u32,
+    pub(crate) layout: PackedLayout,
     pub(crate) uniforms: wgpu::Buffer,
     pub(crate) dispatch: wgpu::Buffer,
     pub(crate) accum: wgpu::Buffer,
@@ -334,7 +334,7 @@ impl Renderer {
         Ok(SceneBuffers {
             width,
             height,
-            bvh_root: uniforms.bvh_root,
+            layout: PackedLayout { bvh_root: uniforms.bvh_root, plane_first: uniforms.plane_first, plane_count: uniforms.plane_count },
             uniforms: uniforms_buffer,
             dispatch,
             accum,

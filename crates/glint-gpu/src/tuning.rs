@@ -386,6 +386,7 @@ mod tests {
             lights: Vec::new(),
             points: Vec::new(),
             light_count: 0,
+            planes: (0, 0),
         };
         assert!(fits_uniform_tree(&scene));
         scene.nodes.push(GpuNode::zeroed());

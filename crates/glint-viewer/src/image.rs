@@ -207,7 +207,7 @@ impl TracedImage {
         let materials: Vec<_> = scene.materials.iter().map(|m| gpu_types::pack_material(&specular.apply(m))).collect();
         let lights: Vec<_> = scene.lights.iter().filter(|l| l.enabled).map(gpu_types::pack_light).collect();
         let (width, height) = canvas.size();
-        let uniforms = gpu_types::scene_uniforms(scene, width, height, lights.len() as u32, canvas.prepared.buffers.bvh_root());
+        let uniforms = gpu_types::scene_uniforms(scene, width, height, lights.len() as u32, canvas.prepared.buffers.layout());
         canvas.take_edits(&materials, &lights, &uniforms, settings.view)?;
         let renderer = &canvas.kernels.renderer;
         let buffers = &mut canvas.prepared.buffers;

@@ -169,7 +169,7 @@ fn edits_in_place_equal_a_fresh_upload() {
     let materials: Vec<_> = edited.materials.iter().map(gpu_types::pack_material).collect();
     renderer().write_lights(&buffers, &lights).unwrap();
     renderer().write_materials(&buffers, &materials).unwrap();
-    let uniforms = gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.bvh_root());
+    let uniforms = gpu_types::scene_uniforms(&edited, edited.width, edited.height, lights.len() as u32, buffers.layout());
     renderer().write_uniforms(&mut buffers, &uniforms).unwrap();
     let options = RenderOptions::default();
     trace_in_bands(&buffers, &options);
@@ -228,7 +228,7 @@ fn depth_cueing_turned_on_in_place_needs_an_editable_upload() {
     cued.depth_cue = Some(glint_scene::DepthCue { color: glam::Vec3::new(0.2, 0.3, 0.4), near: 1.0, far: 8.0, near_scale: 1.0, far_scale: 0.2 });
     let buffers = upload(&plain);
     assert!(!buffers.specialization.depth_cue);
-    let uniforms = gpu_types::scene_uniforms(&cued, cued.width, cued.height, cued.lights.iter().filter(|l| l.enabled).count() as u32, buffers.bvh_root());
+    let uniforms = gpu_types::scene_uniforms(&cued, cued.width, cued.height, cued.lights.iter().filter(|l| l.enabled).count() as u32, buffers.layout());
     refused_until_editable(buffers, "depth cueing", &cued, |b| renderer().write_uniforms(b, &uniforms));
 }
 
@@ -243,7 +243,7 @@ fn a_deeper_ray_tree_in_place_needs_an_editable_upload() {
     deep.render.max_depth = 6;
     let buffers = upload(&shallow);
     assert_eq!(buffers.specialization.max_depth, 2);
-    let uniforms = gpu_types::scene_uniforms(&deep, deep.width, deep.height, deep.lights.iter().filter(|l| l.enabled).count() as u32, buffers.bvh_root());
+    let uniforms = gpu_types::scene_uniforms(&deep, deep.width, deep.height, deep.lights.iter().filter(|l| l.enabled).count() as u32, buffers.layout());
     refused_until_editable(buffers, "deeper ray tree", &deep, |b| renderer().write_uniforms(b, &uniforms));
 }
 

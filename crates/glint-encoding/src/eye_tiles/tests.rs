@@ -85,7 +85,7 @@ fn footprints(triangles: &[[Vec3; 3]]) -> Footprints {
         })
         .collect();
     let bounds: Vec<(Vec3, Vec3)> = triangles.iter().map(|t| (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]))).collect();
-    let scene = GpuScene { prims, nodes: Vec::new(), grids: Vec::new(), bvh_root: 0, materials: Vec::new(), lights: Vec::new(), points, light_count: 0 };
+    let scene = GpuScene { prims, nodes: Vec::new(), grids: Vec::new(), bvh_root: 0, materials: Vec::new(), lights: Vec::new(), points, light_count: 0, planes: (0, 0) };
     Footprints::new(&scene, &bounds)
 }
 
@@ -191,7 +191,7 @@ fn binning_lists_what_the_reference_binning_lists() {
         for camera in [own, inside, from_above] {
             scene.camera = camera;
             for (width, height) in [(512, 512), (100, 75)] {
-                let camera = gpu_types::scene_uniforms(&scene, width, height, 0, 0).camera;
+                let camera = gpu_types::scene_uniforms(&scene, width, height, 0, Default::default()).camera;
                 let (fast, reference) = (footprints.bin(&camera, width, height), reference_bin(&footprints, &camera, width, height));
                 assert!(fast == reference, "{name} seen from {:?} at {width}x{height}", scene.camera);
                 binned += usize::from(fast.is_some());

@@ -8,7 +8,7 @@ use std::sync::atomic::Ordering;
 use glam::Vec3;
 use glint_encoding::gpu_bvh::GpuBvh;
 use glint_encoding::gpu_types::{
-    pack, plane_range, primitive_bounds, scene_uniforms, GpuScene, BVH_STACK, LEAF, PRIM_PLANE, PRIM_POLYGON, PRIM_TRIANGLE,
+    pack, primitive_bounds, scene_uniforms, GpuScene, BVH_STACK, LEAF, PRIM_PLANE, PRIM_POLYGON, PRIM_TRIANGLE,
     RIGHT_LEAF,
 };
 use glint_scene::bvh::Bvh;
@@ -131,8 +131,8 @@ pub(crate) fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     let gpu_bvh = GpuBvh::encode(&bvh).map_err(|e| TestCaseError::fail(e.to_string()))?;
     let packed = pack(scene, &bvh.order, gpu_bvh);
     check_indices(&packed)?;
-    check_planes(&packed, plane_range(scene), scene.primitive_count())?;
-    let g = scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.bvh_root);
+    check_planes(&packed, packed.planes, scene.primitive_count())?;
+    let g = scene_uniforms(scene, scene.width, scene.height, packed.light_count, packed.layout());
     let camera_values = [g.camera.u, g.camera.v, g.camera.w].concat();
     prop_assert!(
         camera_values.iter().chain([&g.camera.half_width, &g.camera.half_height]).all(|v| v.is_finite()),
