@@ -49,7 +49,8 @@ impl Renderer {
 
     /// Bins `footprints` for `camera` and binds the lists, when the device can
     /// trace them and they are short enough to repay it; else the kernels walk
-    /// the BVH. True when the scene now has eye tiles.
+    /// the BVH, one eye ray at a time where the lists were refused as too
+    /// long (`crowded`). True when the scene now has eye tiles.
     pub(crate) fn bin_eye_tiles(&self, scene: &mut SceneBuffers, footprints: &Footprints, camera: &GpuCamera) -> bool {
         if !self.profile.eye_tiles {
             scene.forget_view();
