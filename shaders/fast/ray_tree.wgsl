@@ -3,13 +3,16 @@
 // ray towards the next light of the surface being shaded. Every ray goes
 // through one call of `traverse`: lavapipe inlines a call's whole walk and
 // primitive tests, so a second call would be a second copy of them to compile
-// (docs/decisions/024-one-walk-in-the-trace-kernel.md).
-// import: bindings bvh checker dispatch notes primitive ray_stack scene_arrays secondary_rays shade shadow types
+// (docs/decisions/024-one-walk-in-the-trace-kernel.md). With EYE_HITS the eye
+// ray's hit is not walked again: the primary kernel's eye tiles found it and
+// left it in the accumulation buffer (docs/decisions/059-eye-hits-from-the-eye-tiles.md).
+// import: bindings bvh camera checker dispatch notes primitive ray_stack sample scene_arrays secondary_rays shade shadow types
 
 // The deepest level this invocation's tree reached (the ray-depth view).
 var<private> deepest: u32;
 
-fn trace_pixel(eye: Ray) -> vec3<f32> {
+fn trace_pixel(pixel: vec2<u32>) -> vec3<f32> {
+    let eye = camera_ray(vec2<f32>(pixel) + sample_offset(pixel));
     // Rays at depth d < max_depth push at most two and the next is popped at
     // once, so at most one sibling per level waits: max_depth entries.
     var stack: array<PendingRay, MAX_DEPTH>;
@@ -36,6 +39,9 @@ fn trace_pixel(eye: Ray) -> vec3<f32> {
         var hit: Hit;
         if shadow_query && !shadows_traced() {
             hit = unshadowed();
+        } else if EYE_HITS && !shadow_query && pending.depth == 1u {
+            let found = eye_hit_written(pixel);
+            hit = Hit(found.t, found.prim, vec3<f32>(1.0), 0u);
         } else {
             hit = traverse(query_ray, 0.0, query_end, shadow_query, shadow_query && shadows_tinted());
         }

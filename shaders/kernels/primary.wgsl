@@ -1,5 +1,6 @@
 // The primary kernel: the data views and AOVs (depth, normal, albedo, id, BVH
-// heat map) and picking, which need the eye ray's hit alone. A kernel of its
+// heat map) and picking, which need the eye ray's hit alone; dispatched for a
+// view of the ray tree, it leaves each eye hit for the trace kernel. A kernel of its
 // own, without the ray tree or shadow rays, compiles to far leaner code than
 // the trace kernel (register and private-memory pressure), so these views and
 // picking run faster and compile sooner. An invocation traces the eye ray of
@@ -37,6 +38,8 @@ fn primary_main(
     let corner = band_pixel(wid, lid, groups, vec2<u32>(BAND_WORKGROUP_WIDTH, PRIMARY_WORKGROUP_HEIGHT), select(1u, 2u, PACKETS));
     let block = select(1u, 0xfu, PACKETS);
     let hits = trace_eye_block(corner, in_band(corner));
+    // The trace kernel counts the eye rays whose hits it takes.
+    let for_trace = dispatch_view() == VIEW_SHADED || dispatch_view() == VIEW_RAY_DEPTH || dispatch_view() == VIEW_RAY_COUNT;
     // The loop over the block's pixels steps through its bits, as fast/eye_rays.wgsl does.
     var hit_count = 0u;
     var miss_count = 0u;
@@ -48,7 +51,9 @@ fn primary_main(
         if in_band(pixel) {
             hit_count += u32(hits.t[k] != MISS);
             miss_count += u32(hits.t[k] == MISS);
-            if dispatch_view() == VIEW_HEATMAP {
+            if for_trace {
+                write_eye_hit(pixel, hits.t[k], hits.prim[k]);
+            } else if dispatch_view() == VIEW_HEATMAP {
                 write_number(pixel, f32(hits.visited[k]));
             } else if dispatch_view() == VIEW_DEPTH {
                 write_number(pixel, hits.t[k]);
@@ -57,7 +62,9 @@ fn primary_main(
             }
         }
     }
-    count_rays(STAT_EYE_HIT, hit_count);
-    count_rays(STAT_EYE_MISS, miss_count);
+    if !for_trace {
+        count_rays(STAT_EYE_HIT, hit_count);
+        count_rays(STAT_EYE_MISS, miss_count);
+    }
     flush_ray_counts(wid, groups);
 }

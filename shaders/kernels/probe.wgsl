@@ -3,12 +3,12 @@
 // with every term it adds, for `glint probe` and the viewer's inspector.
 // The tree is recorded by kernels/probe_notes.wgsl, which stands in for the
 // lib/notes.wgsl that every other kernel composes.
-// import: bindings camera kernels/probe_notes ray_tree sample
+// import: bindings kernels/probe_notes ray_tree
 
 @compute @workgroup_size(1)
 fn probe_main() {
     let pixel = dispatch.origin;
     probe.count = 0u;
     probe.truncated = 0u;
-    probe.color = trace_pixel(camera_ray(vec2<f32>(pixel) + sample_offset(pixel)));
+    probe.color = trace_pixel(pixel);
 }

@@ -74,3 +74,24 @@ fn write_pixel(pixel: vec2<u32>, value: vec3<f32>) {
 fn write_number(pixel: vec2<u32>, value: f32) {
     accum[accum_index(pixel)].x = value;
 }
+
+// The eye ray's closest hit at a pixel: its distance (MISS for a miss) and
+// primitive.
+struct EyeHit {
+    t: f32,
+    prim: u32,
+}
+
+// The primary kernel, dispatched for a view of the ray tree, leaves each
+// pixel's eye hit in the accumulation buffer; the trace kernel may then shade
+// from it instead of walking the eye ray again, and its sample overwrites it.
+fn write_eye_hit(pixel: vec2<u32>, t: f32, prim: u32) {
+    let index = accum_index(pixel);
+    accum[index].x = t;
+    accum[index].y = bitcast<f32>(prim);
+}
+
+fn eye_hit_written(pixel: vec2<u32>) -> EyeHit {
+    let written = accum[accum_index(pixel)];
+    return EyeHit(written.x, bitcast<u32>(written.y));
+}

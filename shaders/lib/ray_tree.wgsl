@@ -6,12 +6,14 @@
 // is handed, ray by ray and term by term, to the `note_` functions of
 // lib/notes.wgsl, which do nothing; the probe kernel composes its own in their
 // place, which record the tree for `glint probe` and the viewer's inspector.
-// import: bindings bvh checker dispatch notes primitive ray_stack scene_arrays secondary_rays shade shadow types
+// import: bindings bvh camera checker dispatch notes primitive ray_stack sample scene_arrays secondary_rays shade shadow types
 
 // The deepest level this invocation's tree reached (the ray-depth view).
 var<private> deepest: u32;
 
-fn trace_pixel(eye: Ray) -> vec3<f32> {
+// The colour of `pixel`'s sample: the tree of its eye ray.
+fn trace_pixel(pixel: vec2<u32>) -> vec3<f32> {
+    let eye = camera_ray(vec2<f32>(pixel) + sample_offset(pixel));
     // A ray at depth d < max_depth pushes at most two and the next is popped
     // at once, so at most one sibling per level waits: max_depth entries.
     var stack: array<PendingRay, MAX_DEPTH>;

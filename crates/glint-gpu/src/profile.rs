@@ -219,6 +219,7 @@ impl DeviceProfile {
             spread: self.spread,
             one_walk_tree: self.one_walk_tree,
             mask_loops: self.mask_loops,
+            eye_hits: false,
             workgroups: self.workgroups,
         }
     }

@@ -215,10 +215,14 @@ impl Renderer {
         self.pipelines.create(kernels, scene.specialization, scene.view_tuning())
     }
 
-    /// Creates now the pipelines that dispatches of `views` on `scene` use.
+    /// Creates now the pipelines that a viewer's progressive samples of
+    /// `views` on `scene` use. (One sample a pixel takes the eye hits of the
+    /// primary kernel, whose pipeline its first dispatch creates.)
     pub fn create_view_pipelines(&self, scene: &SceneBuffers, views: &[View]) -> Result<(), GpuError> {
         for &view in views {
-            self.pipelines.get(kernel_for(view), scene.specialization.dispatching(view), scene.view_tuning())?;
+            let kernel = kernel_for(view);
+            let tuning = sampled_tuning(kernel, scene.view_tuning(), 0);
+            self.pipelines.get(kernel, scene.specialization.dispatching(view), tuning)?;
         }
         Ok(())
     }
@@ -530,17 +534,22 @@ impl Renderer {
     ) -> Result<(), GpuError> {
         let kernel = kernel_for(view);
         let specialization = scene.specialization.dispatching(view);
-        let tuning = scene.dispatch_tuning(&region);
-        let pipeline = self.pipelines.get(kernel, specialization, tuning)?;
+        let tuning = sampled_tuning(kernel, scene.dispatch_tuning(&region), region.sample_count);
+        // The primary kernel first finds the eye hits the trace kernel shades from.
+        let eye_hits = kernel == Kernel::Trace && tuning.for_kernel(kernel).eye_hits();
+        let kernels: &[Kernel] = if eye_hits { &[Kernel::Primary, kernel] } else { &[kernel] };
+        let pipelines = kernels.iter().map(|&k| self.pipelines.get(k, specialization, tuning)).collect::<Result<Vec<_>, _>>()?;
         let region = DispatchParams { view: view as u32, ..region };
         self.queue.write_buffer(&scene.dispatch, 0, bytemuck::bytes_of(&region));
         let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &scene.scene_bind, &[]);
         pass.set_bind_group(1, &scene.eye_tiles.bind, &[]);
         let [width, height] = [0, 1].map(|a| region.end[a] - region.origin[a]);
-        let [across, down] = tuning.workgroup_size(kernel).map(|n| n * tuning.block_side(kernel));
-        pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);
+        for (&kernel, pipeline) in kernels.iter().zip(&pipelines) {
+            pass.set_pipeline(pipeline);
+            let [across, down] = tuning.workgroup_size(kernel).map(|n| n * tuning.block_side(kernel));
+            pass.dispatch_workgroups(width.div_ceil(across), height.div_ceil(down), 1);
+        }
         Ok(())
     }
 
@@ -694,6 +703,13 @@ fn kernel_for(view: View) -> Kernel {
         _ if view.is_primary_only() => Kernel::Primary,
         _ => Kernel::Trace,
     }
+}
+
+/// The tuning `kernel` runs when a render takes `sample_count` samples a
+/// pixel: the eye tiles serve rays through pixel centres, so only a
+/// one-sample render's trace kernel takes their eye hits.
+fn sampled_tuning(kernel: Kernel, tuning: Tuning, sample_count: u32) -> Tuning {
+    if kernel == Kernel::Trace && sample_count != 1 { tuning.without_eye_tiles() } else { tuning }
 }
 
 /// A 1D dispatch of `groups` workgroups, folded into rows when it exceeds the

@@ -67,6 +67,13 @@ pub struct Tuning {
     /// compiles their bodies once (shaders/fast/eye_rays.wgsl, push_rays.wgsl
     /// and flush_counts.wgsl; docs/decisions/057-loops-over-bit-masks.md).
     pub(crate) mask_loops: bool,
+    /// The trace kernel takes its eye rays' hits from the accumulation
+    /// buffer, where the primary kernel's eye tiles left them, instead of
+    /// walking the BVH for them (shaders/fast/ray_tree.wgsl;
+    /// docs/decisions/059-eye-hits-from-the-eye-tiles.md). Set by
+    /// [`Tuning::for_kernel`] alone, where the view has eye tiles and the
+    /// tree is walked once.
+    pub(crate) eye_hits: bool,
     /// The workgroups of the kernels that trace row bands.
     pub(crate) workgroups: WorkgroupSizes,
 }
@@ -139,6 +146,7 @@ impl Tuning {
         spread: false,
         one_walk_tree: false,
         mask_loops: false,
+        eye_hits: false,
         workgroups: WorkgroupSizes::PLAIN,
     };
 
@@ -170,6 +178,10 @@ impl Tuning {
         self.mask_loops
     }
 
+    pub fn eye_hits(self) -> bool {
+        self.eye_hits
+    }
+
     pub fn workgroups(self) -> WorkgroupSizes {
         self.workgroups
     }
@@ -196,6 +208,7 @@ impl Tuning {
         spread: true,
         one_walk_tree: true,
         mask_loops: true,
+        eye_hits: false,
         workgroups: WorkgroupSizes::LAVAPIPE,
     };
 
@@ -211,7 +224,7 @@ impl Tuning {
                 if !eye_tiles || (arrays == SceneArrays::Buffers && spread) {
                     // Both of lavapipe's ways of compiling once come together.
                     let mask_loops = one_walk_tree;
-                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree, mask_loops, workgroups: WorkgroupSizes::LAVAPIPE });
+                    all.push(Tuning { arrays, packets, uniform_tree, eye_tiles, spread, one_walk_tree, mask_loops, eye_hits: false, workgroups: WorkgroupSizes::LAVAPIPE });
                 }
             }
         }
@@ -237,6 +250,7 @@ impl Tuning {
             (self.spread, "spread"),
             (self.one_walk_tree, "one-walk-tree"),
             (self.mask_loops, "mask-loops"),
+            (self.eye_hits, "eye-hits"),
         ];
         let chosen = choices.iter().filter(|(on, _)| *on).map(|(_, name)| name.to_string());
         let workgroups = (self.workgroups != WorkgroupSizes::PLAIN).then(|| self.workgroups.name());
@@ -258,14 +272,18 @@ impl Tuning {
     /// way: only what changes its code, so that its renders share one
     /// pipeline (and one entry of a driver's disk cache) whatever else
     /// differs. Only the primary kernel traces packets, only the trace and
-    /// probe kernels walk the ray tree, and only the kernels that trace row
-    /// bands have their workgroup sizes.
+    /// probe kernels walk the ray tree, only the trace kernel's one walk takes
+    /// the eye hits the primary kernel's eye tiles found, and only the kernels
+    /// that trace row bands have their workgroup sizes.
     pub fn for_kernel(self, kernel: Kernel) -> Tuning {
         match kernel {
-            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, one_walk_tree: false, ..self },
-            Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, one_walk_tree: false, ..self },
-            Kernel::Trace => Tuning { packets: false, eye_tiles: false, ..self },
-            Kernel::Probe => Tuning { packets: false, eye_tiles: false, workgroups: WorkgroupSizes::PLAIN, ..self },
+            Kernel::Primary => Tuning { eye_tiles: self.eye_tiles && self.packets, one_walk_tree: false, eye_hits: false, ..self },
+            Kernel::Diffuse => Tuning { packets: false, eye_tiles: false, one_walk_tree: false, eye_hits: false, ..self },
+            Kernel::Trace => {
+                let eye_hits = self.eye_tiles && self.packets && self.one_walk_tree;
+                Tuning { packets: false, eye_tiles: false, eye_hits, ..self }
+            }
+            Kernel::Probe => Tuning { packets: false, eye_tiles: false, eye_hits: false, workgroups: WorkgroupSizes::PLAIN, ..self },
             Kernel::Resolve | Kernel::Present => Tuning { arrays: self.arrays, ..Tuning::PLAIN },
         }
     }
@@ -286,9 +304,9 @@ impl Tuning {
     pub fn wgsl(self) -> String {
         let WorkgroupSizes { width, band_height, primary_height } = self.workgroups;
         format!(
-            "const PACKETS: bool = {};\n\
+            "const PACKETS: bool = {};\nconst EYE_HITS: bool = {};\n\
              const BAND_WORKGROUP_WIDTH: u32 = {width}u;\nconst BAND_WORKGROUP_HEIGHT: u32 = {band_height}u;\nconst PRIMARY_WORKGROUP_HEIGHT: u32 = {primary_height}u;\n",
-            self.packets
+            self.packets, self.eye_hits
         )
     }
 }
@@ -412,16 +430,20 @@ mod tests {
     #[test]
     fn only_the_primary_kernel_traces_packets_and_eye_tiles() {
         let fast = Tuning::LAVAPIPE;
-        assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, ..fast });
+        assert_eq!(fast.for_kernel(Kernel::Primary), Tuning { one_walk_tree: false, eye_hits: false, ..fast });
         assert_eq!(fast.block_side(Kernel::Primary), 2);
         let trace = Tuning { uniform_tree: true, spread: true, one_walk_tree: true, mask_loops: true, workgroups: WorkgroupSizes::LAVAPIPE, ..Tuning::PLAIN };
-        assert_eq!(fast.for_kernel(Kernel::Trace), trace);
+        assert_eq!(fast.for_kernel(Kernel::Trace), Tuning { eye_hits: true, ..trace }, "the trace kernel takes the eye tiles' hits");
         assert_eq!(fast.for_kernel(Kernel::Probe), Tuning { workgroups: WorkgroupSizes::PLAIN, ..trace }, "the probe traces no bands");
         assert_eq!(fast.for_kernel(Kernel::Diffuse), Tuning { one_walk_tree: false, ..trace });
         assert_eq!(fast.for_kernel(Kernel::Trace).block_side(Kernel::Trace), 1);
         assert_eq!(fast.for_kernel(Kernel::Resolve), Tuning::PLAIN);
         let no_packets = Tuning { packets: false, ..fast };
         assert!(!no_packets.for_kernel(Kernel::Primary).eye_tiles, "eye tiles are walked by packets");
+        assert_eq!(no_packets.for_kernel(Kernel::Trace), trace, "no eye hits without the tiles' packets");
+        assert_eq!(fast.without_eye_tiles().for_kernel(Kernel::Trace), trace, "no eye hits without eye tiles");
+        assert_eq!(Tuning { one_walk_tree: false, ..fast }.for_kernel(Kernel::Trace), Tuning { one_walk_tree: false, ..trace }, "only the one walk takes eye hits");
+        assert!(!fast.for_kernel(Kernel::Primary).eye_hits && !fast.for_kernel(Kernel::Probe).eye_hits);
         assert_eq!(no_packets.block_side(Kernel::Primary), 1);
     }
 

@@ -116,7 +116,7 @@ impl ViewerApp {
         }));
         let max_side = rs.device.limits().max_texture_dimension_2d.min(MAX_IMAGE_SIDE);
         let settings = Settings::default();
-        let warm_up = WarmUp::new(settings.view);
+        let warm_up = WarmUp::new(settings.view, settings.traced_samples());
         let mut app = Self {
             device: rs.device.clone(),
             adapter: info.clone(),

@@ -41,15 +41,16 @@ impl Kernels {
         Ok(Self { renderer, present, source: source.clone(), queue: queue.clone() })
     }
 
-    /// Has the device compile the kernel a canvas of `scene` first dispatches
-    /// for `view`, by tracing one pixel. A software rasteriser compiles a
+    /// Has the device compile the kernels a canvas of `scene` first dispatches
+    /// for `view` at `spp` samples per pixel (as `RenderOptions::spp`), by
+    /// tracing one pixel. A software rasteriser compiles a
     /// kernel at its first dispatch, on its queue's one thread; done as soon as kernels and
     /// scene are both there, that compile runs while the window starts rather
     /// than after the first frame, which gives the canvas its size.
-    pub fn warm_up(&self, scene: &Scene, view: View) -> Result<(), GpuError> {
+    pub fn warm_up(&self, scene: &Scene, view: View, spp: u32) -> Result<(), GpuError> {
         let mut prepared = self.renderer.prepare(scene, 1, 1, Acceleration::Bvh)?;
         specialise(&mut prepared, view);
-        self.renderer.trace_rows(&prepared.buffers, 0, &RenderOptions { view, ..RenderOptions::default() }, 0..1)
+        self.renderer.trace_rows(&prepared.buffers, 0, &RenderOptions { view, spp, ..RenderOptions::default() }, 0..1)
     }
 }
 
@@ -310,6 +311,7 @@ mod tests {
     use glint_encoding::gpu_types::View;
     use glint_gpu::schedule::BandScheduler;
     use glint_gpu::shaders::{Kernel, ShaderSource};
+    use crate::settings::Settings;
     use glint_gpu::RenderOptions;
 
     use super::{Accumulation, Canvas, Completions, Kernels, Step, POLL_INTERVAL};
@@ -353,12 +355,14 @@ mod tests {
         let gpu = glint_gpu::Gpu::new().expect("a device (a software one in CI)");
         let kernels = Arc::new(Kernels::compile(&gpu.device, &gpu.queue, &ShaderSource::Embedded).unwrap());
         let scene = glint_scene::load(Path::new("spd:tetra:1")).unwrap();
-        kernels.warm_up(&scene, View::Shaded).unwrap();
+        kernels.warm_up(&scene, View::Shaded, Settings::default().traced_samples()).unwrap();
         let warmed = kernels.renderer.pipelines_created();
         let canvas = Canvas::new(Arc::clone(&kernels), &scene, View::Shaded, (40, 30), 1).unwrap();
         let (specialization, tuning) = (canvas.prepared.buffers.specialization, canvas.prepared.buffers.tuning());
         assert_eq!(specialization.view, Some(View::Shaded), "the canvas's kernels are for its first view alone");
-        let trace = (Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)), tuning.for_kernel(Kernel::Trace));
+        // Progressive samples leave the pixel centres: no eye hits.
+        let progressive = tuning.without_eye_tiles().for_kernel(Kernel::Trace);
+        let trace = (Kernel::Trace, Kernel::Trace.compiled_for(specialization.dispatching(View::Shaded)), progressive);
         assert_eq!(warmed, [trace]);
         assert_eq!(kernels.renderer.pipelines_created(), warmed, "the canvas needs no other pipeline for its first image");
         // Picking gets the primary kernel for every view; its one pixel is no

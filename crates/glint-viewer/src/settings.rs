@@ -86,13 +86,17 @@ impl Settings {
 
     /// How `canvas`'s samples are traced and resolved.
     pub fn trace_options(&self, canvas: &Canvas) -> RenderOptions {
-        // One sample goes through pixel centres; progressive samples are
-        // jittered without a fixed count (0), a fixed count is stratified.
-        let spp = match (self.spp, self.progressive) {
+        RenderOptions { spp: self.traced_samples(), ..self.present_options(canvas) }
+    }
+
+    /// The samples per pixel the trace kernel is told of. One sample goes
+    /// through pixel centres; progressive samples are jittered without a
+    /// fixed count (0), a fixed count is stratified.
+    pub fn traced_samples(&self) -> u32 {
+        match (self.spp, self.progressive) {
             (1, _) => 1,
             (_, true) => 0,
             (n, false) => n,
-        };
-        RenderOptions { spp, ..self.present_options(canvas) }
+        }
     }
 }

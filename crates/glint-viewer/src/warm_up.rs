@@ -14,8 +14,10 @@ use crate::engine::Kernels;
 /// starts the warm-up.
 #[derive(Clone)]
 pub(crate) struct WarmUp {
-    /// The view the viewer opens in.
+    /// The view the viewer opens in, and the samples per pixel it traces
+    /// (a one-sample Whitted image may compile the primary kernel too).
     view: View,
+    spp: u32,
     parts: Arc<Mutex<Parts>>,
 }
 
@@ -26,8 +28,8 @@ struct Parts {
 }
 
 impl WarmUp {
-    pub fn new(view: View) -> Self {
-        Self { view, parts: Arc::default() }
+    pub fn new(view: View, spp: u32) -> Self {
+        Self { view, spp, parts: Arc::default() }
     }
 
     pub fn kernels(&self, kernels: &Arc<Kernels>) {
@@ -51,12 +53,12 @@ impl WarmUp {
         if cfg!(target_arch = "wasm32") {
             return;
         }
-        let view = self.view;
+        let (view, spp) = (self.view, self.spp);
         std::thread::Builder::new()
             .name("glint warm-up".into())
             // A failure is the first canvas's too, made of the same scene and
             // kernels, and reported when that one fails.
-            .spawn(move || drop(kernels.warm_up(&scene, view)))
+            .spawn(move || drop(kernels.warm_up(&scene, view, spp)))
             .expect("the OS can start a thread");
     }
 }
