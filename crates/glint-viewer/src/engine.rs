@@ -311,7 +311,6 @@ mod tests {
     use glint_encoding::gpu_types::View;
     use glint_gpu::schedule::BandScheduler;
     use glint_gpu::shaders::{Kernel, ShaderSource};
-    use crate::settings::Settings;
     use glint_gpu::RenderOptions;
 
     use super::{Accumulation, Canvas, Completions, Kernels, Step, POLL_INTERVAL};
@@ -355,7 +354,8 @@ mod tests {
         let gpu = glint_gpu::Gpu::new().expect("a device (a software one in CI)");
         let kernels = Arc::new(Kernels::compile(&gpu.device, &gpu.queue, &ShaderSource::Embedded).unwrap());
         let scene = glint_scene::load(Path::new("spd:tetra:1")).unwrap();
-        kernels.warm_up(&scene, View::Shaded, Settings::default().traced_samples()).unwrap();
+        // The viewer's default: progressive samples (Settings::traced_samples).
+        kernels.warm_up(&scene, View::Shaded, 0).unwrap();
         let warmed = kernels.renderer.pipelines_created();
         let canvas = Canvas::new(Arc::clone(&kernels), &scene, View::Shaded, (40, 30), 1).unwrap();
         let (specialization, tuning) = (canvas.prepared.buffers.specialization, canvas.prepared.buffers.tuning());

@@ -100,3 +100,16 @@ impl Settings {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Settings;
+
+    #[test]
+    fn samples_through_pixel_centres_only_at_one_a_pixel() {
+        let settings = |spp, progressive| Settings { spp, progressive, ..Settings::default() };
+        assert_eq!(Settings::default().traced_samples(), 0, "the viewer opens with progressive samples");
+        assert_eq!(settings(1, true).traced_samples(), 1);
+        assert_eq!(settings(16, false).traced_samples(), 16);
+    }
+}
