@@ -20,7 +20,10 @@ use x11rb::rust_connection::RustConnection;
 const SCREEN: (u16, u16) = (1280, 800);
 
 /// Ends the whole process group (xvfb-run, Xvfb, glint) if the test fails early.
-struct Group(Child);
+/// The directory holds the server's auth file: given one, xvfb-run makes no
+/// temporary directory of its own, whose removal once failed a CI run
+/// ("problem while cleaning up temporary directory", exit 5 for glint's 3).
+struct Group(Child, tempfile::TempDir);
 
 impl Drop for Group {
     fn drop(&mut self) {
@@ -36,6 +39,7 @@ impl Drop for Group {
 /// value removes the variable).
 fn under_xvfb(command: &[&OsStr], dir: &Path, env: &[(&str, Option<&OsStr>)]) -> Group {
     let screen = format!("-screen 0 {}x{}x24 -ac", SCREEN.0, SCREEN.1);
+    let auth = tempfile::tempdir().unwrap();
     let mut xvfb = Command::new("xvfb-run");
     for (name, value) in env {
         match value {
@@ -44,7 +48,8 @@ fn under_xvfb(command: &[&OsStr], dir: &Path, env: &[(&str, Option<&OsStr>)]) ->
         };
     }
     let child = xvfb
-        .args(["-a", "-s", &screen])
+        .args(["-a", "-s", &screen, "-f"])
+        .arg(auth.path().join("Xauthority"))
         .args(command)
         .current_dir(dir)
         .stdin(Stdio::null())
@@ -53,7 +58,7 @@ fn under_xvfb(command: &[&OsStr], dir: &Path, env: &[(&str, Option<&OsStr>)]) ->
         .process_group(0)
         .spawn()
         .expect("xvfb-run must be installed (bash .ci/setup --tests installs it)");
-    Group(child)
+    Group(child, auth)
 }
 
 /// The top-level window whose title starts with "Glint", once it is shown.
